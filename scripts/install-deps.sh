@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Installs penumbra's build and test dependencies from Debian 12 packages. Idempotent: packages
+# already installed are not fetched again, so a second run needs no network.
+set -euo pipefail
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev libopenexr-dev libpng-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libembree-dev   # optional: only the accel-bench comparison row uses it
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+echo "installing: ${missing[*]}" >&2
+$sudo apt-get update -qq
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,58 @@
+#pragma once
+/// The interface every spatial data structure for ray shooting implements.
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "penumbra/core/ray.h"
+#include "penumbra/geometry/hit.h"
+#include "penumbra/geometry/primitive_set.h"
+
+namespace penumbra {
+
+/// Size and shape of a built structure, reported by `render` and `accel-bench`.
+struct AccelStats {
+  size_t nodes = 0;            ///< all nodes, inner and leaf
+  size_t leaves = 0;           ///< leaf nodes (or cells)
+  size_t max_depth = 0;        ///< deepest leaf (root at depth 0)
+  size_t prim_refs = 0;        ///< primitive references stored in leaves
+  size_t bytes = 0;            ///< memory of the structure, excluding the primitives themselves
+  double build_ms = 0;         ///< wall time of the build
+  /// Structure-specific figures (e.g. "fragments"), printed after the common ones.
+  std::vector<std::pair<std::string, double>> extra;
+
+  /// Mean primitive references per leaf.
+  double mean_prims_per_leaf() const { return leaves ? double(prim_refs) / double(leaves) : 0.0; }
+};
+
+/// A spatial data structure over a PrimitiveSet, answering closest-hit and any-hit queries.
+/// The primitive set must outlive the structure. Queries are const and thread-safe.
+class Accelerator {
+ public:
+  virtual ~Accelerator() = default;
+
+  /// The registered name with its parameters, e.g. "bvh" or "kdtree:sah".
+  virtual std::string name() const = 0;
+  /// Builds over `prims` (replacing any previous build).
+  virtual void build(const PrimitiveSet& prims) = 0;
+  /// Closest hit on (ray.tmin, ray.tmax); fills `hit` and returns true when there is one.
+  virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
+  /// True when anything is hit on (ray.tmin, ray.tmax).
+  virtual bool occluded(const Ray& ray) const = 0;
+  /// Statistics of the last build.
+  virtual AccelStats stats() const = 0;
+
+  /// Closest hits for a batch of rays (a seam for packet, GPU and distributed back ends);
+  /// the default loops over `intersect`.
+  virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
+    for (size_t i = 0; i < rays.size(); ++i) {
+      hits[i] = Hit{};
+      intersect(rays[i], hits[i]);
+    }
+  }
+};
+
+}  // namespace penumbra

@@ -1,0 +1,37 @@
+#include "penumbra/accel/brute_force.h"
+
+#include "penumbra/core/timer.h"
+
+namespace penumbra {
+
+BruteForce::BruteForce(const ParamList& params) { params.check_all_used(); }
+
+void BruteForce::build(const PrimitiveSet& prims) {
+  const Timer timer;
+  prims_ = &prims;
+  valid_.clear();
+  for (uint32_t i = 0; i < prims.size(); ++i)
+    if (!prims.prim_bounds(i).empty()) valid_.push_back(i);
+  stats_ = {};
+  stats_.nodes = stats_.leaves = 1;
+  stats_.prim_refs = valid_.size();
+  stats_.bytes = valid_.capacity() * sizeof(uint32_t);
+  stats_.build_ms = timer.elapsed_ms();
+}
+
+bool BruteForce::intersect(const Ray& ray, Hit& hit) const {
+  const PreparedRay pr(ray);
+  hit = Hit{};
+  hit.t = ray.tmax;
+  for (uint32_t id : valid_) prims_->intersect(id, pr, hit);
+  return hit.valid();
+}
+
+bool BruteForce::occluded(const Ray& ray) const {
+  const PreparedRay pr(ray);
+  for (uint32_t id : valid_)
+    if (prims_->occludes(id, pr)) return true;
+  return false;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,46 @@
+#pragma once
+/// Top-down construction of a binary BVH over primitive references with binned SAH splits
+/// (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"). Shared by every
+/// structure that starts from a binary BVH.
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "penumbra/accel/build/binned_sah.h"
+#include "penumbra/accel/build/bvh_node.h"
+#include "penumbra/accel/build/prim_ref.h"
+
+namespace penumbra {
+
+/// Settings of the binary BVH build.
+struct BvhBuildParams {
+  int bins = 16;                 ///< SAH bins per axis, in [2, kMaxBins]
+  int max_leaf = 8;              ///< most references in one leaf
+  float traversal_cost = 1.0f;   ///< cost of an inner node relative to one primitive test
+  size_t parallel_min = 4096;    ///< nodes with more references build their children as tasks
+};
+
+/// A built binary BVH. nodes[0] is the root and nodes[1] is padding, so that every pair of
+/// children starts at an even index (one cache line); `refs` are in leaf order.
+struct BinaryBvh {
+  BvhNodeArray nodes;         ///< root, padding, then child pairs in depth-first order
+  std::vector<PrimRef> refs;  ///< references in leaf order; leaves index into this array
+  size_t leaves = 0;          ///< number of leaves
+  size_t max_depth = 0;       ///< depth of the deepest leaf (root at 0)
+
+  /// Number of real nodes (excluding the padding slot).
+  size_t node_count() const { return nodes.empty() ? 0 : nodes.size() - 1; }
+};
+
+/// Deepest level at which SAH splits are used; below it nodes are split at the object median,
+/// which bounds the depth (and the traversal stack) by this plus log2 of the primitive count.
+inline constexpr int kMaxSahDepth = 48;
+/// Traversal stack size that covers every tree this builder makes.
+inline constexpr int kBvhStackSize = kMaxSahDepth + 40;
+
+/// Builds a binary BVH over `refs` (consumed). Leaves hold at most `max_leaf` references and are
+/// made where the SAH says a leaf is cheaper than any split. Subtrees build in parallel; the
+/// result is identical for every thread count. An empty input gives an empty tree.
+BinaryBvh build_binary_bvh(PrimRefs refs, const BvhBuildParams& params);
+
+}  // namespace penumbra

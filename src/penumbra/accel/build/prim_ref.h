@@ -1,0 +1,38 @@
+#pragma once
+/// What a builder sees of a primitive: its box and its id (Embree's PrimRef; builders know
+/// nothing of meshes, only boxes and centroids).
+#include <cstdint>
+#include <vector>
+
+#include "penumbra/core/bounds.h"
+#include "penumbra/geometry/primitive_set.h"
+
+namespace penumbra {
+
+/// A primitive's box and id in 32 bytes; the centroid is implied by the box.
+struct alignas(32) PrimRef {
+  Vec3 lo;
+  uint32_t id;
+  Vec3 hi;
+  uint32_t pad;
+
+  /// Twice the box centre (the builders bin on lo + hi to save a multiplication).
+  Vec3 centroid2() const { return lo + hi; }
+  /// The box.
+  Bounds3 bounds() const { return {lo, hi}; }
+};
+static_assert(sizeof(PrimRef) == 32);
+
+/// Primitive references of a set, with the totals a top-down builder starts from.
+struct PrimRefs {
+  std::vector<PrimRef> refs;  ///< one per primitive with finite bounds, in id order
+  Bounds3 bounds;             ///< union of the boxes
+  Bounds3 centroid_bounds;    ///< bounds of centroid2() over all refs
+};
+
+/// References to every primitive of `prims` with a non-empty box (others can never be hit and are
+/// skipped). Zero coordinates are normalised to +0 so that min/max reductions do not depend on
+/// the order of combination (the build is then identical for every thread count). Parallel.
+PrimRefs make_prim_refs(const PrimitiveSet& prims);
+
+}  // namespace penumbra

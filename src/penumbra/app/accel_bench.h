@@ -1,0 +1,28 @@
+#pragma once
+/// `penumbra accel-bench`: builds acceleration structures over a mesh and measures build time,
+/// memory and ray throughput on deterministic ray sets, optionally against Embree 3.
+#include <cstddef>
+#include <string>
+
+namespace CLI {
+class App;
+}
+
+namespace penumbra::app {
+
+/// The options of one benchmark run.
+struct AccelBenchArgs {
+  std::string input;            ///< mesh (.obj, .ply) or scene (.json, not yet supported)
+  std::string accels = "all";   ///< comma-separated NAME[:params], or "all"
+  int threads = 0;              ///< worker threads; 0 = all cores
+  std::string json;             ///< when set, results are also written here as a JSON array
+  size_t rays = 1'000'000;      ///< incoherent (and occlusion) rays
+};
+
+/// Registers the `accel-bench` subcommand on `app`.
+void add_accel_bench_command(CLI::App& app);
+
+/// Runs the benchmark, printing a table to stdout; throws Error on bad input.
+void run_accel_bench(const AccelBenchArgs& args);
+
+}  // namespace penumbra::app

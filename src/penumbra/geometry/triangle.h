@@ -1,0 +1,59 @@
+#pragma once
+/// Watertight ray-triangle intersection (Woop, Benthin, Wald 2013, "Watertight Ray/Triangle
+/// Intersection", JCGT 2(1)): no ray passes between two triangles sharing an edge, and a ray
+/// through a shared edge or vertex hits at least one of them. Degenerate (zero-area) and
+/// non-finite triangles are never hit.
+#include <cmath>
+
+#include "penumbra/geometry/float_error.h"
+#include "penumbra/geometry/prepared_ray.h"
+
+namespace penumbra {
+
+/// Tests triangle (a, b, c) against `pr` on (tmin, tmax). On a hit sets t and the barycentrics
+/// (u, v) of b and c and returns true.
+inline bool intersect_triangle(const PreparedRay& pr, Vec3 a, Vec3 b, Vec3 c, float tmin,
+                               float tmax, float& t, float& u, float& v) {
+  const Vec3 o = pr.ray.o;
+  // Vertices relative to the ray origin, sheared so the ray runs along +z.
+  const Vec3 A = a - o, B = b - o, C = c - o;
+  const float ax = A[pr.kx] - pr.sx * A[pr.kz], ay = A[pr.ky] - pr.sy * A[pr.kz];
+  const float bx = B[pr.kx] - pr.sx * B[pr.kz], by = B[pr.ky] - pr.sy * B[pr.kz];
+  const float cx = C[pr.kx] - pr.sx * C[pr.kz], cy = C[pr.ky] - pr.sy * C[pr.kz];
+  // Scaled barycentrics as 2D edge functions.
+  float U = cx * by - cy * bx, V = ax * cy - ay * cx, W = bx * ay - by * ax;
+  if (U == 0.0f || V == 0.0f || W == 0.0f) {
+    // Recompute in double on an edge, as the paper prescribes, for a consistent sign.
+    U = float(double(cx) * by - double(cy) * bx);
+    V = float(double(ax) * cy - double(ay) * cx);
+    W = float(double(bx) * ay - double(by) * ax);
+  }
+  if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return false;
+  const float det = U + V + W;
+  if (!(std::fabs(det) > 0.0f)) return false;  // degenerate, or NaN
+  const float az = pr.sz * A[pr.kz], bz = pr.sz * B[pr.kz], cz = pr.sz * C[pr.kz];
+  const float T = U * az + V * bz + W * cz;
+  // Range test on the scaled distance, without dividing yet.
+  if (det > 0.0f ? (T <= tmin * det || T >= tmax * det) : (T >= tmin * det || T <= tmax * det))
+    return false;
+  const float inv = 1.0f / det;
+  t = T * inv;
+  // Reject a hit closer to the origin than the rounding error of t: a ray leaving a surface (its
+  // origin exactly on the plane, as happens for axis-aligned walls) must not hit that surface
+  // again (conservative bound of pbrt-v3 section 3.9.6).
+  const float max_zt = std::fmax(std::fabs(az), std::fmax(std::fabs(bz), std::fabs(cz)));
+  const float max_xt = std::fmax(std::fabs(ax), std::fmax(std::fabs(bx), std::fabs(cx)));
+  const float max_yt = std::fmax(std::fabs(ay), std::fmax(std::fabs(by), std::fabs(cy)));
+  const float delta_z = gamma(3) * max_zt;
+  const float delta_x = gamma(5) * (max_xt + max_zt), delta_y = gamma(5) * (max_yt + max_zt);
+  const float delta_e = 2.0f * (gamma(2) * max_xt * max_yt + delta_y * max_xt + delta_x * max_yt);
+  const float max_e = std::fmax(std::fabs(U), std::fmax(std::fabs(V), std::fabs(W)));
+  const float delta_t =
+      3.0f * (gamma(3) * max_e * max_zt + delta_e * max_zt + delta_z * max_e) * std::fabs(inv);
+  if (!(t > delta_t)) return false;
+  u = V * inv;
+  v = W * inv;
+  return t > tmin && t < tmax;  // guards against rounding at the interval ends
+}
+
+}  // namespace penumbra

@@ -1,0 +1,18 @@
+#pragma once
+/// OpenEXR files through the OpenEXR library: 32-bit float R, G, B channels, ZIP compression.
+#include <string>
+
+#include "penumbra/image/image.h"
+
+namespace penumbra {
+
+/// Writes a scanline EXR with 32-bit float R, G, B channels and ZIP compression.
+/// Throws Error naming the file if the image is empty or OpenEXR fails.
+void write_exr(const RgbImage& image, const std::string& path);
+
+/// Reads the R, G, B channels of an EXR as floats (half channels are widened, missing ones read as
+/// 0; a luminance-only "Y" file is copied to all three). The data window becomes the image.
+/// Throws InputError naming the file if OpenEXR rejects it or it holds no colour channels.
+RgbImage read_exr(const std::string& path);
+
+}  // namespace penumbra

@@ -1,0 +1,94 @@
+/// Format dispatch by extension and atomic (write-then-rename) file replacement.
+#include "penumbra/image/image_io.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+
+#include "penumbra/image/exr.h"
+#include "penumbra/image/pfm.h"
+#include "penumbra/image/png.h"
+
+namespace penumbra {
+namespace {
+
+// A name beside path that no other process or concurrent write uses.
+std::string temp_path_for(const std::string& path) {
+  static std::atomic<unsigned> counter{0};
+  return path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+}
+
+}  // namespace
+
+ImageFormat image_format_for(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  if (ext == ".png") return ImageFormat::kPng;
+  if (ext == ".exr") return ImageFormat::kExr;
+  if (ext == ".pfm") return ImageFormat::kPfm;
+  throw Error(path + ": unknown image extension '" + ext + "' (valid: .exr, .pfm, .png)");
+}
+
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string& temp_path)>& write) {
+  const std::string temp = temp_path_for(path);
+  std::error_code ignored;
+  // Write the temporary file; an Error naming it is re-thrown naming path instead.
+  try {
+    write(temp);
+  } catch (const Error& e) {
+    std::filesystem::remove(temp, ignored);
+    std::string message = e.what();
+    for (std::size_t at = message.find(temp); at != message.npos; at = message.find(temp, at)) {
+      message.replace(at, temp.size(), path);
+      at += path.size();
+    }
+    throw Error(message);
+  } catch (...) {
+    std::filesystem::remove(temp, ignored);
+    throw;
+  }
+  // Replace path in one step.
+  std::error_code error;
+  std::filesystem::rename(temp, path, error);
+  if (error) {
+    std::filesystem::remove(temp, ignored);
+    throw Error(path + ": cannot replace with the finished file: " + error.message());
+  }
+}
+
+void write_image(const RgbImage& image, const std::string& path) {
+  const ImageFormat format = image_format_for(path);
+  write_atomically(path, [&](const std::string& temp) {
+    switch (format) {
+      case ImageFormat::kPng:
+        write_png(image, temp);
+        break;
+      case ImageFormat::kExr:
+        write_exr(image, temp);
+        break;
+      case ImageFormat::kPfm:
+        write_pfm(image, temp);
+        break;
+    }
+  });
+}
+
+RgbImage read_image(const std::string& path) {
+  switch (image_format_for(path)) {
+    case ImageFormat::kPng:
+      return read_png(path);
+    case ImageFormat::kExr:
+      return read_exr(path);
+    case ImageFormat::kPfm:
+      return read_pfm(path);
+  }
+  throw Error(path + ": unknown image format");
+}
+
+}  // namespace penumbra

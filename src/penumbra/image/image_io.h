@@ -1,0 +1,31 @@
+#pragma once
+/// Reading and writing images by file extension, with writes that never leave a partial file.
+#include <functional>
+#include <string>
+
+#include "penumbra/image/image.h"
+
+namespace penumbra {
+
+/// The image file formats penumbra reads and writes.
+enum class ImageFormat { kPng, kExr, kPfm };
+
+/// The format named by path's extension (.png, .exr, .pfm; any case); throws Error listing the
+/// valid extensions for any other.
+ImageFormat image_format_for(const std::string& path);
+
+/// Runs write(temp_path) on a temporary file beside path, then renames it onto path, so path is
+/// either untouched or complete. If write or the rename throws, the temporary file is removed and
+/// the exception propagates (an Error naming the temporary file is re-thrown as an Error naming
+/// path; a failed rename throws Error).
+void write_atomically(const std::string& path,
+                      const std::function<void(const std::string& temp_path)>& write);
+
+/// Writes image to path in the format its extension names (PNG: 8-bit sRGB, exposure 1), through
+/// write_atomically. Throws Error on an unknown extension or a failed write.
+void write_image(const RgbImage& image, const std::string& path);
+
+/// Reads the image at path in the format its extension names, as linear RGB.
+RgbImage read_image(const std::string& path);
+
+}  // namespace penumbra

@@ -1,0 +1,27 @@
+#pragma once
+/// The pinhole camera: every ray starts at the eye.
+#include "penumbra/core/transform.h"
+#include "penumbra/render/camera/camera.h"
+#include "penumbra/scene/scene_params.h"
+
+namespace penumbra {
+
+/// Pinhole camera with a vertical field of view. Film point (sx, sy) in [0,W)x[0,H) maps to the
+/// direction normalize(forward + t (2 sx/W - 1) a right + t (1 - 2 sy/H) up), t = tan(vfov/2),
+/// a = W/H, with right = forward x up: the convention of the Cornell box reference data.
+/// Parameters: position, look_at, up (default (0,1,0)), vfov (degrees, default 45).
+class PinholeCamera final : public Camera {
+ public:
+  PinholeCamera(const SceneParams& params, int width, int height);
+  /// A camera from its placement directly (for tests and benchmarks).
+  PinholeCamera(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width, int height);
+  Ray generate_ray(const CameraSample& s) const override;
+
+ private:
+  void init(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width, int height);
+
+  Vec3 eye_, forward_, right_, up_;
+  float tan_half_ = 1, aspect_ = 1, inv_w_ = 1, inv_h_ = 1;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,25 @@
+#pragma once
+/// Lambertian (ideal diffuse) reflection.
+#include "penumbra/render/material/material.h"
+#include "penumbra/scene/scene_params.h"
+
+namespace penumbra {
+
+/// Lambertian BRDF albedo / pi, reflecting on both sides. Parameters: albedo (RGB in [0, 1],
+/// default 0.5).
+class DiffuseMaterial final : public Material {
+ public:
+  explicit DiffuseMaterial(Rgb albedo) : albedo_(albedo) {}
+  explicit DiffuseMaterial(const SceneParams& params);
+  Rgb eval(Vec3 wo, Vec3 wi) const override;
+  float pdf(Vec3 wo, Vec3 wi) const override;
+  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
+  int specular_lobes(Vec3, SpecularLobe[2]) const override { return 0; }
+  bool has_non_specular() const override { return true; }
+  Rgb albedo() const override { return albedo_; }
+
+ private:
+  Rgb albedo_;
+};
+
+}  // namespace penumbra

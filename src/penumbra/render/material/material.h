@@ -1,0 +1,50 @@
+#pragma once
+/// Materials: the BSDF at a surface point, in the local shading frame (z = shading normal, pointing
+/// to the side the surface's front faces). Directions wo (towards the viewer) and wi (towards the
+/// light) point away from the surface.
+#include <optional>
+
+#include "penumbra/core/color.h"
+#include "penumbra/core/vec.h"
+
+namespace penumbra {
+
+/// A direction drawn from a BSDF with its value and density.
+struct BsdfSample {
+  Vec3 wi;
+  Rgb f;             ///< BSDF value (for a delta lobe: the lobe's weight times pdf / |cos|)
+  float pdf = 0;     ///< solid-angle density (for a delta lobe: its discrete probability)
+  bool delta = false;
+};
+
+/// One perfectly specular direction and its throughput weight (f |cos| / probability = the
+/// factor applied to the radiance arriving along wi).
+struct SpecularLobe {
+  Vec3 wi;
+  Rgb weight;
+};
+
+/// A material's scattering behaviour. Implementations are immutable and thread-safe.
+class Material {
+ public:
+  virtual ~Material() = default;
+  /// BSDF value of the non-specular part for the pair (wo, wi).
+  virtual Rgb eval(Vec3 wo, Vec3 wi) const = 0;
+  /// Solid-angle density with which `sample` picks wi given wo (non-specular part).
+  virtual float pdf(Vec3 wo, Vec3 wi) const = 0;
+  /// Draws wi given wo with the uniform samples (uc, u); none when the sample is rejected.
+  virtual std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const = 0;
+  /// Writes the specular (delta) directions for wo into `out` (at most 2); returns how many.
+  virtual int specular_lobes(Vec3 wo, SpecularLobe out[2]) const = 0;
+  /// True when `eval` can be non-zero (direct lighting by shadow rays is worth doing).
+  virtual bool has_non_specular() const = 0;
+  /// A representative reflectance, for debugging views.
+  virtual Rgb albedo() const = 0;
+};
+
+/// Cosine of a local-frame direction with the normal.
+constexpr float cos_theta(Vec3 w) { return w.z; }
+/// True when both local directions lie on the same side of the surface.
+constexpr bool same_hemisphere(Vec3 a, Vec3 b) { return a.z * b.z > 0.0f; }
+
+}  // namespace penumbra

@@ -1,0 +1,24 @@
+#pragma once
+/// Perfect specular reflection.
+#include "penumbra/render/material/material.h"
+#include "penumbra/scene/scene_params.h"
+
+namespace penumbra {
+
+/// An ideal mirror. Parameters: reflectance (RGB in [0, 1], default 1).
+class MirrorMaterial final : public Material {
+ public:
+  explicit MirrorMaterial(Rgb reflectance) : reflectance_(reflectance) {}
+  explicit MirrorMaterial(const SceneParams& params);
+  Rgb eval(Vec3, Vec3) const override { return {}; }
+  float pdf(Vec3, Vec3) const override { return 0.0f; }
+  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
+  int specular_lobes(Vec3 wo, SpecularLobe out[2]) const override;
+  bool has_non_specular() const override { return false; }
+  Rgb albedo() const override { return reflectance_; }
+
+ private:
+  Rgb reflectance_;
+};
+
+}  // namespace penumbra

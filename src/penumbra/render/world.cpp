@@ -1,0 +1,151 @@
+#include "penumbra/render/world.h"
+
+#include <cmath>
+#include <numbers>
+
+#include "penumbra/accel/registry.h"
+#include "penumbra/core/error.h"
+#include "penumbra/render/light/light_registry.h"
+#include "penumbra/render/material/material_registry.h"
+
+namespace penumbra {
+
+World::World(const SceneDesc& desc, const std::string& accel_spec) {
+  background_ = desc.render.background;
+  // Materials by name.
+  std::vector<std::string> names;
+  for (const auto& m : desc.materials) {
+    materials_.push_back(make_material(m.params));
+    names.push_back(m.name);
+  }
+  for (const auto& l : desc.lights) lights_.push_back(make_light(l));
+
+  // Shapes to world-space primitives.
+  for (size_t s = 0; s < desc.shapes.size(); ++s) {
+    const ShapeDesc& sd = desc.shapes[s];
+    ShapeInfo info;
+    for (size_t m = 0; m < names.size(); ++m)
+      if (names[m] == sd.material) info.material = materials_[m].get();
+    if (!info.material)
+      throw InputError(desc.file, sd.path + "/material", "unknown material '" + sd.material + "'");
+    info.emission = sd.emission;
+    info.two_sided = sd.two_sided_emission;
+    info.flip_normal = sd.to_world.swaps_handedness();
+    const auto shape = static_cast<uint32_t>(s);
+    const uint32_t first = prims_.size();
+    if (const auto* sphere = std::get_if<SphereData>(&sd.geometry)) {
+      const float scale = length(sd.to_world.vector({1, 0, 0}));
+      info.flip_normal = false;  // a sphere's front is always outside
+      prims_.add_sphere({sd.to_world.point(sphere->center), sphere->radius * scale}, shape);
+    } else if (const auto* quad = std::get_if<QuadData>(&sd.geometry)) {
+      prims_.add_quad({sd.to_world.point(quad->p), sd.to_world.vector(quad->e1),
+                       sd.to_world.vector(quad->e2)},
+                      shape);
+    } else {
+      const auto& mesh = std::get<TriangleMesh>(sd.geometry);
+      prims_.add_mesh(mesh, sd.to_world, shape);
+      if (!mesh.normals.empty() || !mesh.uvs.empty()) {
+        TriangleMesh attrs;
+        attrs.indices = mesh.indices;
+        attrs.uvs = mesh.uvs;
+        for (const Vec3& n : mesh.normals) attrs.normals.push_back(normalize(sd.to_world.normal(n)));
+        info.mesh = static_cast<int>(meshes_.size());
+        meshes_.push_back(std::move(attrs));
+      }
+    }
+    if (sd.emission && !sd.emission->is_black())
+      emitters_.push_back({shape, first, prims_.size() - first, *sd.emission, sd.two_sided_emission});
+    shapes_.push_back(info);
+  }
+
+  accel_ = make_accelerator(accel_spec);
+  accel_->build(prims_);
+}
+
+Vec3 World::area_normal(uint32_t prim) const {
+  Vec3 n;
+  if (prims_.kind(prim) == PrimKind::kTriangle) {
+    const Vec3* p = prims_.triangle(prim);
+    n = cross(p[1] - p[0], p[2] - p[0]) * 0.5f;
+  } else if (prims_.kind(prim) == PrimKind::kQuad) {
+    n = cross(prims_.quad(prim).e1, prims_.quad(prim).e2);
+  }
+  return shapes_[prims_.origin(prim).shape].flip_normal ? -n : n;
+}
+
+bool World::intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const {
+  ++counter.rays;
+  Hit hit;
+  if (!accel_->intersect(ray, hit)) return false;
+  interaction(ray, hit, si);
+  return true;
+}
+
+bool World::occluded(const Ray& ray, RayCounter& counter) const {
+  ++counter.rays;
+  return accel_->occluded(ray);
+}
+
+void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) const {
+  const uint32_t id = hit.prim;
+  const PrimOrigin& origin = prims_.origin(id);
+  const ShapeInfo& shape = shapes_[origin.shape];
+  si.t = hit.t;
+  si.prim = id;
+  si.shape = origin.shape;
+  si.material = shape.material;
+  si.wo = normalize(-ray.d);
+  si.uv = {hit.u, hit.v};
+  switch (prims_.kind(id)) {
+    case PrimKind::kTriangle: {
+      const Vec3* p = prims_.triangle(id);
+      const float b0 = 1.0f - hit.u - hit.v;
+      si.p = p[0] * b0 + p[1] * hit.u + p[2] * hit.v;
+      // Error of a barycentric combination (pbrt-v3 section 3.9.4).
+      si.p_error = (abs(p[0] * b0) + abs(p[1] * hit.u) + abs(p[2] * hit.v)) * gamma(7);
+      si.ng = normalize(cross(p[1] - p[0], p[2] - p[0]));
+      break;
+    }
+    case PrimKind::kSphere: {
+      const SphereData& s = prims_.sphere(id);
+      const Vec3 d = ray.at(hit.t) - s.center;
+      // Reproject onto the surface; the error is then a few ulps of p (pbrt-v3 section 3.9.4).
+      si.p = s.center + d * (s.radius / length(d));
+      si.p_error = abs(si.p) * gamma(5);
+      si.ng = normalize(si.p - s.center);
+      const float phi = std::atan2(si.ng.y, si.ng.x);
+      si.uv = {phi * 0.5f * std::numbers::inv_pi_v<float> + 0.5f,
+               std::acos(std::clamp(si.ng.z, -1.0f, 1.0f)) * std::numbers::inv_pi_v<float>};
+      break;
+    }
+    case PrimKind::kQuad: {
+      const QuadData& q = prims_.quad(id);
+      si.p = q.p + q.e1 * hit.u + q.e2 * hit.v;
+      si.p_error = (abs(q.p) + abs(q.e1 * hit.u) + abs(q.e2 * hit.v)) * gamma(6);
+      si.ng = normalize(cross(q.e1, q.e2));
+      break;
+    }
+  }
+  if (shape.flip_normal) si.ng = -si.ng;
+  si.ns = si.ng;
+  if (shape.mesh >= 0) {
+    // Interpolated shading normal and uvs of the triangle's vertices.
+    const TriangleMesh& m = meshes_[size_t(shape.mesh)];
+    const uint32_t* idx = &m.indices[3 * size_t(origin.local)];
+    const float b0 = 1.0f - hit.u - hit.v;
+    if (!m.normals.empty()) {
+      const Vec3 n = m.normals[idx[0]] * b0 + m.normals[idx[1]] * hit.u + m.normals[idx[2]] * hit.v;
+      if (dot(n, n) > 0.0f && is_finite(n)) si.ns = face_forward(normalize(n), si.ng);
+    }
+    if (!m.uvs.empty()) {
+      const Vec2 uv = m.uvs[idx[0]] * b0 + m.uvs[idx[1]] * hit.u + m.uvs[idx[2]] * hit.v;
+      si.uv = uv;
+    }
+  }
+  orthonormal_basis(si.ns, si.ss, si.ts);
+  // Emission leaves the front side (the geometric normal's) unless the emitter is two-sided.
+  si.emitted = {};
+  if (shape.emission && (shape.two_sided || dot(si.ng, si.wo) > 0.0f)) si.emitted = *shape.emission;
+}
+
+}  // namespace penumbra

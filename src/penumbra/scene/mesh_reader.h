@@ -1,0 +1,17 @@
+#pragma once
+/// Mesh file loading: dispatch on the file extension to the OBJ or PLY reader, and the whole-file
+/// read the readers share (one read into memory, then parsing with pointers, no stream per token).
+#include <string>
+
+#include "penumbra/geometry/triangle_mesh.h"
+
+namespace penumbra {
+
+/// Reads a triangle mesh from `path`, choosing the reader by extension (.obj or .ply, any case);
+/// throws InputError for an unknown extension or a malformed file.
+TriangleMesh read_mesh(const std::string& path);
+
+/// Returns the whole content of the file at `path`; throws InputError if it cannot be read.
+std::string read_file_contents(const std::string& path);
+
+}  // namespace penumbra

@@ -1,0 +1,58 @@
+#pragma once
+/// The plain description of a scene, as read from a scene file: no renderer types. The renderer
+/// creates cameras, materials and lights from these records by their type names.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "penumbra/core/color.h"
+#include "penumbra/core/transform.h"
+#include "penumbra/geometry/primitive_set.h"
+#include "penumbra/geometry/triangle_mesh.h"
+#include "penumbra/scene/scene_params.h"
+
+namespace penumbra {
+
+/// Settings of a render; command-line flags override them.
+struct RenderSettings {
+  int width = 256, height = 256;
+  int spp = 1;
+  int max_depth = 8;
+  uint64_t seed = 0;
+  std::string integrator = "whitted";
+  std::string accel = "bvh";
+  Rgb background{0.0f};  ///< radiance of rays that leave the scene
+};
+
+/// A named material: its type ("diffuse", "mirror", "dielectric", ...) and parameters.
+struct MaterialDesc {
+  std::string name;
+  SceneParams params;
+};
+
+/// One shape in object space with its object-to-world transform.
+struct ShapeDesc {
+  /// Sphere, parallelogram or triangle mesh (inline or loaded from OBJ/PLY).
+  std::variant<SphereData, QuadData, TriangleMesh> geometry;
+  Transform to_world;
+  std::string material;         ///< name of a MaterialDesc
+  std::optional<Rgb> emission;  ///< radiance emitted on the front side, when emissive
+  bool two_sided_emission = false;
+  std::string path;  ///< JSON path, for messages
+  std::string name;  ///< optional "name" from the file ("" when absent)
+};
+
+/// Everything a scene file describes.
+struct SceneDesc {
+  std::string file;         ///< the scene file, for messages
+  std::string description;  ///< optional free text (provenance, notes)
+  SceneParams camera;       ///< type "pinhole" (later: thin-lens fields)
+  RenderSettings render;
+  std::vector<MaterialDesc> materials;
+  std::vector<SceneParams> lights;  ///< type "point", ...
+  std::vector<ShapeDesc> shapes;
+};
+
+}  // namespace penumbra

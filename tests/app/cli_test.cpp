@@ -1,0 +1,124 @@
+// End-to-end tests of the penumbra program: flags, outputs, errors, determinism.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// A fresh directory for one test, removed afterwards.
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("penumbra-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  /// Runs the program with `args`; returns its exit code, stderr in `err_`.
+  int run(const std::string& args) {
+    const std::string err_file = (dir_ / "stderr.txt").string();
+    const std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " > " +
+                            (dir_ / "stdout.txt").string() + " 2> " + err_file + " < /dev/null";
+    const int status = std::system(cmd.c_str());
+    err_ = slurp(err_file);
+    out_ = slurp((dir_ / "stdout.txt").string());
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  }
+  static std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  void write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+  }
+  static std::string scene(const std::string& name) {
+    return std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name;
+  }
+
+  fs::path dir_;
+  std::string err_, out_;
+};
+
+TEST_F(CliTest, HelpListsEverySubcommandAndRenderFlag) {
+  ASSERT_EQ(run("--help"), 0);
+  EXPECT_NE(out_.find("render"), std::string::npos);
+  EXPECT_NE(out_.find("accel-bench"), std::string::npos);
+  ASSERT_EQ(run("render --help"), 0);
+  for (const char* flag : {"--spp", "--threads", "--seed", "--accel", "--integrator",
+                           "--resolution", "--output"})
+    EXPECT_NE(out_.find(flag), std::string::npos) << flag;
+}
+
+TEST_F(CliTest, SameSeedGivesIdenticalBytesAtAnyThreadCount) {
+  const std::string common = scene("cornell-box.json") + " --resolution 64x48 --spp 3 ";
+  ASSERT_EQ(run("render " + common + "--seed 9 --threads 1 -o " + path("a.pfm")), 0) << err_;
+  ASSERT_EQ(run("render " + common + "--seed 9 --threads 2 -o " + path("b.pfm")), 0) << err_;
+  const std::string a = slurp(path("a.pfm")), b = slurp(path("b.pfm"));
+  ASSERT_GT(a.size(), 64u * 48u * 12u);
+  EXPECT_TRUE(a == b);
+  ASSERT_EQ(run("render " + common + "--seed 10 --threads 2 -o " + path("c.pfm")), 0) << err_;
+  EXPECT_FALSE(a == slurp(path("c.pfm")));  // the seed matters
+}
+
+TEST_F(CliTest, SummaryReportsTimeRaysAndAccelStatistics) {
+  ASSERT_EQ(run("render " + scene("cornell-box.json") + " --resolution 32x32 --spp 1 -o " +
+                path("out.png")),
+            0)
+      << err_;
+  EXPECT_TRUE(fs::exists(path("out.png")));
+  EXPECT_NE(err_.find("Mrays/s"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("nodes"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("render:"), std::string::npos) << err_;  // plain progress lines off a tty
+}
+
+TEST_F(CliTest, EveryImageFormatIsWritten) {
+  for (const char* ext : {"png", "exr", "pfm"}) {
+    const std::string out = path(std::string("img.") + ext);
+    ASSERT_EQ(run("render " + scene("cornell-box.json") + " --resolution 16x16 -q -o " + out), 0)
+        << err_;
+    EXPECT_GT(fs::file_size(out), 16u);
+  }
+}
+
+TEST_F(CliTest, BadInputFailsWithAMessageAndNoOutput) {
+  const std::string out = path("never.png");
+  struct Case {
+    std::string args, expect;
+  };
+  write("bad.json", "{\"camera\": {\"type\": \"pinhole\", \"position\": [0,0,0], \"look_at\": "
+                    "[0,0,1]}, \"shapes\": [{\"type\": \"sphere\", \"radus\": 1}]}");
+  write("syntax.json", "{\n  \"camera\": {\n    \"type\": \"pinhole\",,\n  }\n}\n");
+  const Case cases[] = {
+      {"render " + path("missing.json") + " -o " + out, "missing.json"},
+      {"render " + path("bad.json") + " -o " + out, "/shapes/0"},
+      {"render " + path("syntax.json") + " -o " + out, "syntax.json:3"},
+      {"render " + scene("cornell-box.json") + " --accel nope -o " + out, "valid: brute"},
+      {"render " + scene("cornell-box.json") + " --integrator nope -o " + out, "whitted"},
+      {"render " + scene("cornell-box.json") + " --resolution 12 -o " + out, "WxH"},
+      {"render " + scene("cornell-box.json") + " -o " + path("x.jpg"), ".png"},
+      {"render " + scene("cornell-box.json") + " --spp 0 -o " + out, "spp"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_NE(run(c.args), 0) << c.args;
+    EXPECT_NE(err_.find(c.expect), std::string::npos) << c.args << "\n" << err_;
+    EXPECT_FALSE(fs::exists(out)) << c.args;
+  }
+}
+
+}  // namespace
+}  // namespace penumbra

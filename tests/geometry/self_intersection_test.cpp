@@ -1,0 +1,57 @@
+// Rays leaving a surface must never hit that surface again (no shadow acne).
+#include <gtest/gtest.h>
+
+#include "penumbra/core/rng.h"
+#include "penumbra/geometry/float_error.h"
+#include "penumbra/geometry/triangle.h"
+
+namespace penumbra {
+namespace {
+
+// Points exactly on an axis-aligned wall (x = 0, like the Cornell box's green wall) get no offset
+// from their (zero) error bound; the triangle test's own bound on t must reject the re-hit.
+TEST(SelfIntersection, RaysFromAnAxisAlignedWallDoNotHitIt) {
+  const Vec3 a{0, 0, 559.2f}, b{0, 0, 0}, c{0, 548.8f, 0};
+  Pcg32 rng(5);
+  int hits = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const float u = rng.next_float(), v = rng.next_float() * (1 - u);
+    const Vec3 p = a * (1 - u - v) + b * u + c * v;
+    const Vec3 err = (abs(a * (1 - u - v)) + abs(b * u) + abs(c * v)) * gamma(7);
+    const Vec3 target{278.0f * rng.next_float() + 1.0f, 548.8f * rng.next_float(),
+                      559.2f * rng.next_float()};
+    Ray r;
+    r.o = offset_ray_origin(p, err, {1, 0, 0}, target - p);
+    r.d = target - r.o;
+    const PreparedRay pr(r);
+    float t, bu, bv;
+    if (intersect_triangle(pr, a, b, c, 0.0f, 1.0f, t, bu, bv)) ++hits;
+  }
+  EXPECT_EQ(hits, 0);
+}
+
+// The same for an arbitrarily oriented triangle far from the origin.
+TEST(SelfIntersection, RaysFromATiltedTriangleFarAwayDoNotHitIt) {
+  const Vec3 a{10000.3f, -2000.7f, 5000.1f}, b{10003.9f, -1998.2f, 5001.7f},
+             c{10001.1f, -1996.5f, 4999.0f};
+  const Vec3 n = normalize(cross(b - a, c - a));
+  Pcg32 rng(6);
+  int hits = 0;
+  for (int i = 0; i < 200000; ++i) {
+    const float u = rng.next_float(), v = rng.next_float() * (1 - u);
+    const Vec3 p = a * (1 - u - v) + b * u + c * v;
+    const Vec3 err = (abs(a * (1 - u - v)) + abs(b * u) + abs(c * v)) * gamma(7);
+    Vec3 d{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f};
+    if (dot(d, n) < 0) d = -d;  // leaving on the front side
+    Ray r;
+    r.o = offset_ray_origin(p, err, n, d);
+    r.d = d;
+    const PreparedRay pr(r);
+    float t, bu, bv;
+    if (intersect_triangle(pr, a, b, c, 0.0f, kInfinity, t, bu, bv)) ++hits;
+  }
+  EXPECT_EQ(hits, 0);
+}
+
+}  // namespace
+}  // namespace penumbra

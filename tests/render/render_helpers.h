@@ -1,0 +1,40 @@
+#pragma once
+// Shared helpers of the render tests: scenes from JSON text, and rendering them in memory.
+#include <memory>
+#include <string>
+
+#include "penumbra/core/parallel.h"
+#include "penumbra/render/camera/camera_registry.h"
+#include "penumbra/render/film.h"
+#include "penumbra/render/integrator/integrator_registry.h"
+#include "penumbra/render/renderer.h"
+#include "penumbra/render/sampler/independent_sampler.h"
+#include "penumbra/render/world.h"
+#include "penumbra/scene/scene_loader.h"
+
+namespace penumbra::test {
+
+/// Renders `desc` with its own settings on `threads` workers (0 = all).
+inline RgbImage render_desc(const SceneDesc& desc, int threads = 0) {
+  const ThreadLimit limit(threads);
+  const RenderSettings& rs = desc.render;
+  const World world(desc, rs.accel);
+  const auto camera = make_camera(desc.camera, rs.width, rs.height);
+  const auto integrator = make_integrator(rs.integrator, world, rs);
+  const IndependentSampler sampler(rs.spp, rs.seed);
+  Film film(rs.width, rs.height);
+  render(*camera, *integrator, sampler, film, RenderOptions{});
+  return film.resolve();
+}
+
+/// Parses scene JSON text (meshes relative to the repository root).
+inline SceneDesc scene_from_text(const std::string& json) {
+  return parse_scene(json, "test.json", PENUMBRA_SOURCE_DIR);
+}
+
+/// Loads a bundled scene from scenes/.
+inline SceneDesc bundled_scene(const std::string& name) {
+  return load_scene(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name);
+}
+
+}  // namespace penumbra::test
