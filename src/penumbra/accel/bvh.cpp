@@ -81,6 +81,7 @@ bool Bvh::traverse(const PreparedRay& pr, Hit& hit) const {
       const BvhNode& other = pair[first ^ 1u];
       stack[sp] = {other.index, other.count, first ? ta : tb};
       sp += mask == 3u;
+      __builtin_prefetch(&nodes_[other.index]);
       index = pair[first].index, count = pair[first].count;
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
