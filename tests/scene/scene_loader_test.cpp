@@ -7,8 +7,10 @@
 #include <cmath>
 #include <string>
 #include <variant>
+#include <vector>
 
 #include "penumbra/core/error.h"
+#include "penumbra/scene/mesh_reader.h"
 
 namespace penumbra {
 namespace {
@@ -319,6 +321,31 @@ TEST(SceneLoader, EmissionAndTwoSided) {
                "no \"emission\"");
   expect_error(scene_text("[" + quad + R"(, "emission": [1, 1, 1], "two_sided": 1}])"),
                "/shapes/0/two_sided", "expected true or false");
+}
+
+// The JSON examples of docs/scene-format.md: the first is a whole scene, the others are shapes.
+TEST(SceneLoader, DocumentedExamplesLoad) {
+  const std::string doc =
+      read_file_contents(std::string(PENUMBRA_SOURCE_DIR) + "/docs/scene-format.md");
+  std::vector<std::string> blocks;
+  for (size_t at = doc.find("```json\n"); at != std::string::npos; at = doc.find("```json\n", at)) {
+    at += 8;
+    const size_t end = doc.find("```", at);
+    blocks.push_back(doc.substr(at, end - at));
+  }
+  ASSERT_GE(blocks.size(), 5u);
+  const SceneDesc s = parse_scene(blocks[0], "example.json", kSceneDir);
+  EXPECT_EQ(s.shapes.size(), 4u);
+  EXPECT_EQ(std::get<TriangleMesh>(s.shapes[2].geometry).triangle_count(), 3674u);
+  const auto& lamp = std::get<TriangleMesh>(s.shapes[3].geometry);
+  expect_near(triangle_normal(lamp, 0), Vec3(0, -1, 0));
+  for (size_t i = 1; i < blocks.size(); ++i) {
+    const std::string text =
+        R"({"camera": {"type": "pinhole"}, "materials": {"white": {"type": "d"},
+        "glass": {"type": "d"}, "clay": {"type": "d"}}, "shapes": [)" +
+        blocks[i] + "]}";
+    EXPECT_NO_THROW(parse_scene(text, "example.json", kSceneDir)) << blocks[i];
+  }
 }
 
 TEST(SceneLoader, SyntaxErrorsReportLineAndColumn) {

@@ -3,7 +3,6 @@
 /// bad value: the conversions shared by SceneParams and the scene loader, and the JSON text parser
 /// (syntax errors at line:column, duplicate keys rejected).
 #include <cstdint>
-#include <initializer_list>
 #include <string>
 #include <string_view>
 #include <vector>

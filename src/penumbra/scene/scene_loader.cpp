@@ -5,7 +5,6 @@
 #include <set>
 #include <utility>
 
-#include "penumbra/core/error.h"
 #include "penumbra/scene/json_value.h"
 #include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/shape_parser.h"

@@ -6,7 +6,6 @@
 #include <system_error>
 #include <vector>
 
-#include "penumbra/core/error.h"
 #include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/transform_parser.h"
 

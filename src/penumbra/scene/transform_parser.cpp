@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include "penumbra/core/error.h"
-
 namespace penumbra {
 
 using nlohmann::json;
