@@ -1,7 +1,13 @@
 // End-to-end tests of the penumbra program: flags, outputs, errors, determinism.
 #include <gtest/gtest.h>
 
+#include <signal.h>
+#include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <thread>
 
 #include <cstdlib>
 #include <filesystem>
@@ -118,6 +124,36 @@ TEST_F(CliTest, BadInputFailsWithAMessageAndNoOutput) {
     EXPECT_NE(err_.find(c.expect), std::string::npos) << c.args << "\n" << err_;
     EXPECT_FALSE(fs::exists(out)) << c.args;
   }
+}
+
+// Ctrl-C stops the render, keeps the finished tiles in a complete image file and exits with 130.
+TEST_F(CliTest, InterruptWritesFinishedWorkAndExits130) {
+  const std::string out = path("partial.pfm"), err = path("err.txt");
+  const std::string cmd = std::string(PENUMBRA_CLI) + " render " + scene("whitted.json") +
+                          " --spp 1024 --threads 2 -o " + out + " 2> " + err;
+  pid_t pid = 0;
+  const char* argv[] = {"/bin/sh", "-c", cmd.c_str(), nullptr};
+  // exec replaces the shell, so the signal reaches penumbra itself.
+  const std::string exec_cmd = "exec " + cmd;
+  argv[2] = exec_cmd.c_str();
+  ASSERT_EQ(posix_spawn(&pid, "/bin/sh", nullptr, nullptr, const_cast<char**>(argv), environ), 0);
+  // Wait until rendering has started (the first progress line), then interrupt.
+  for (int i = 0; i < 600 && slurp(err).find("render:") == std::string::npos; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  ASSERT_EQ(kill(pid, SIGINT), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(pid, &status, 0), pid);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130) << slurp(err);
+  EXPECT_NE(slurp(err).find("interrupted"), std::string::npos);
+  // A complete PFM of the full size: header plus 640 x 480 RGB floats.
+  const std::string pfm = slurp(out);
+  const std::string header = "PF\n640 480\n-1.0\n";
+  ASSERT_GE(pfm.size(), header.size());
+  EXPECT_EQ(pfm.size(), pfm.find("\n", pfm.find("\n", 3) + 1) + 1 + 640u * 480u * 12u);
+  for (const auto& entry : fs::directory_iterator(dir_))  // no temporary file left behind
+    EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << entry.path();
 }
 
 }  // namespace
