@@ -23,6 +23,7 @@ struct RenderSettings {
   uint64_t seed = 0;
   std::string integrator = "whitted";
   std::string accel = "bvh";
+  std::string sampler = "independent";
   Rgb background{0.0f};  ///< radiance of rays that leave the scene
 };
 

@@ -27,7 +27,8 @@ std::string parse_name(const json& v, const JsonPlace& place) {
 RenderSettings parse_render(const json& v, const JsonPlace& place) {
   if (!v.is_object()) place.fail("expected an object");
   json_check_keys(v, place,
-                  {"resolution", "spp", "max_depth", "seed", "integrator", "accel", "background"},
+                  {"resolution", "spp", "max_depth", "seed", "integrator", "accel", "sampler",
+                   "background"},
                   "the render section");
   RenderSettings r;
   if (const json* res = json_find(v, "resolution")) {
@@ -45,6 +46,8 @@ RenderSettings parse_render(const json& v, const JsonPlace& place) {
   if (const json* name = json_find(v, "integrator"))
     r.integrator = parse_name(*name, place.key("integrator"));
   if (const json* name = json_find(v, "accel")) r.accel = parse_name(*name, place.key("accel"));
+  if (const json* name = json_find(v, "sampler"))
+    r.sampler = parse_name(*name, place.key("sampler"));
   if (const json* bg = json_find(v, "background"))
     r.background = json_radiance(*bg, place.key("background"));
   return r;

@@ -1,0 +1,75 @@
+#pragma once
+/// Building blocks of stratified and low-discrepancy samplers: bit reversal, the (0,2)-sequence,
+/// hash-based Owen scrambling and random permutations without tables.
+#include <cstdint>
+
+namespace penumbra {
+
+/// Reverses the 32 bits of x.
+constexpr uint32_t reverse_bits(uint32_t x) {
+  x = (x << 16) | (x >> 16);
+  x = ((x & 0x00ff00ffu) << 8) | ((x & 0xff00ff00u) >> 8);
+  x = ((x & 0x0f0f0f0fu) << 4) | ((x & 0xf0f0f0f0u) >> 4);
+  x = ((x & 0x33333333u) << 2) | ((x & 0xccccccccu) >> 2);
+  x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
+  return x;
+}
+
+/// First dimension of the Sobol' sequence (the base-2 van der Corput sequence) as 32-bit fraction.
+constexpr uint32_t sobol_dim0(uint32_t i) { return reverse_bits(i); }
+
+/// Second dimension of the Sobol' sequence as a 32-bit fraction; with `sobol_dim0` it forms the
+/// (0,2)-sequence in base 2 (Kollig, Keller 2002, "Efficient Multidimensional Sampling"): every
+/// aligned block of 2^k points is stratified in every elementary interval of area 2^-k.
+constexpr uint32_t sobol_dim1(uint32_t i) {
+  uint32_t r = 0;
+  for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
+    if (i & 1u) r ^= v;
+  return r;
+}
+
+/// The hash-based nested uniform (Owen) scramble of a 32-bit fraction (Burley 2020, "Practical
+/// Hash-based Owen Scrambling", JCGT 9(4)): the Laine-Karras permutation applied to the
+/// bit-reversed value, so each bit is flipped depending only on the bits above it.
+constexpr uint32_t owen_scramble(uint32_t v, uint32_t seed) {
+  uint32_t x = reverse_bits(v);
+  x += seed;
+  x ^= x * 0x6c50b47cu;
+  x ^= x * 0xb82f1e52u;
+  x ^= x * 0xc7afe638u;
+  x ^= x * 0x8d22f6e6u;
+  return reverse_bits(x);
+}
+
+/// Element i of a pseudo-random permutation of [0, n) chosen by `seed`, without tables
+/// (Kensler 2013, "Correlated Multi-Jittered Sampling", Pixar technical memo 13-01).
+constexpr uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t seed) {
+  uint32_t w = n - 1;
+  w |= w >> 1, w |= w >> 2, w |= w >> 4, w |= w >> 8, w |= w >> 16;
+  do {
+    i ^= seed;
+    i *= 0xe170893du;
+    i ^= seed >> 16;
+    i ^= (i & w) >> 4;
+    i ^= seed >> 8;
+    i *= 0x0929eb3fu;
+    i ^= seed >> 23;
+    i ^= (i & w) >> 1;
+    i *= 1u | seed >> 27;
+    i *= 0x6935fa69u;
+    i ^= (i & w) >> 11;
+    i *= 0x74dcb303u;
+    i ^= (i & w) >> 2;
+    i *= 0x9e501cc3u;
+    i ^= (i & w) >> 2;
+    i *= 0xc860a3dfu;
+    i &= w;
+    i ^= i >> 5;
+  } while (i >= n);  // cycle-walking: at most a few rounds since w < 2n
+  return (i + seed) % n;
+}
+
+/// A 32-bit fraction as a float in [0, 1) (rounded down so that 1 is never returned).
+constexpr float fraction_to_float(uint32_t v) { return float(v >> 8) * 0x1p-24f; }
+
+}  // namespace penumbra
