@@ -8,6 +8,7 @@
 #include "penumbra/render/film.h"
 #include "penumbra/render/integrator/integrator_registry.h"
 #include "penumbra/render/renderer.h"
+#include "penumbra/render/filter/filter.h"
 #include "penumbra/render/sampler/sampler_registry.h"
 #include "penumbra/render/world.h"
 #include "penumbra/scene/scene_loader.h"
@@ -22,8 +23,9 @@ inline RgbImage render_desc(const SceneDesc& desc, int threads = 0) {
   const auto camera = make_camera(desc.camera, rs.width, rs.height);
   const auto integrator = make_integrator(rs.integrator, world, rs);
   const auto sampler = make_sampler(rs.sampler, rs.spp, rs.seed);
+  const auto filter = make_filter(rs.filter);
   Film film(rs.width, rs.height);
-  render(*camera, *integrator, *sampler, film, RenderOptions{});
+  render(*camera, *integrator, *sampler, FilterSampler(*filter), film, RenderOptions{});
   return film.resolve();
 }
 

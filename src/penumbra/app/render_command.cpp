@@ -18,6 +18,7 @@
 #include "penumbra/render/camera/camera_registry.h"
 #include "penumbra/render/integrator/integrator_registry.h"
 #include "penumbra/render/renderer.h"
+#include "penumbra/render/filter/filter.h"
 #include "penumbra/render/sampler/sampler_registry.h"
 #include "penumbra/render/world.h"
 #include "penumbra/scene/scene_loader.h"
@@ -57,6 +58,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--integrator", args->integrator, "Integrator NAME[:params]: raycast, whitted");
   cmd->add_option("--sampler", args->sampler,
                   "Pixel sampler: independent (random), regular, jittered, sobol");
+  cmd->add_option("--filter", args->filter,
+                  "Pixel filter NAME[:params]: box, tent, gaussian, mitchell");
   cmd->add_option("--resolution", args->resolution, "Image size WxH (overrides the scene)");
   cmd->add_option("--max-depth", args->max_depth, "Maximum bounces (overrides the scene)")
       ->check(CLI::Range(0, 1000));
@@ -79,6 +82,7 @@ int run_render(const RenderArgs& args) {
   if (args.accel) rs.accel = *args.accel;
   if (args.integrator) rs.integrator = *args.integrator;
   if (args.sampler) rs.sampler = *args.sampler;
+  if (args.filter) rs.filter = *args.filter;
   if (args.max_depth) rs.max_depth = *args.max_depth;
   if (args.resolution) std::tie(rs.width, rs.height) = parse_resolution(*args.resolution);
 
@@ -86,11 +90,13 @@ int run_render(const RenderArgs& args) {
   const auto camera = make_camera(desc.camera, rs.width, rs.height);
   const auto integrator = make_integrator(rs.integrator, world, rs);
   const auto sampler = make_sampler(rs.sampler, rs.spp, rs.seed);
+  const auto filter = make_filter(rs.filter);
+  const FilterSampler filter_sampler(*filter);
   const AccelStats accel = world.accelerator().stats();
   if (!args.quiet)
-    fmt::print(stderr, "{}: {} primitives, {} {}x{} at {} spp ({}), {} threads, accel {} built in {}\n",
+    fmt::print(stderr, "{}: {} primitives, {} {}x{} at {} spp ({}, {} filter), {} threads, accel {} built in {}\n",
                args.scene, world.primitives().size(), integrator->name(), rs.width, rs.height,
-               rs.spp, rs.sampler, thread_count(), world.accelerator().name(),
+               rs.spp, rs.sampler, filter->name(), thread_count(), world.accelerator().name(),
                format_duration(accel.build_ms * 1e-3));
 
   Film film(rs.width, rs.height);
@@ -105,7 +111,7 @@ int run_render(const RenderArgs& args) {
     options.on_tile = [&bar](size_t done, size_t) { bar->update(done); };
   }
   const auto old_handler = std::signal(SIGINT, on_interrupt);
-  const RenderStats stats = render(*camera, *integrator, *sampler, film, options);
+  const RenderStats stats = render(*camera, *integrator, *sampler, filter_sampler, film, options);
   std::signal(SIGINT, old_handler);
   if (bar) bar->finish();
 

@@ -15,7 +15,7 @@ struct RenderArgs {
   std::string output;
   std::optional<int> spp, threads, max_depth;
   std::optional<uint64_t> seed;
-  std::optional<std::string> accel, integrator, sampler, resolution;
+  std::optional<std::string> accel, integrator, sampler, filter, resolution;
   bool quiet = false;
 };
 

@@ -8,7 +8,7 @@
 namespace penumbra {
 
 RenderStats render(const Camera& camera, const Integrator& integrator, const Sampler& sampler,
-                   Film& film, const RenderOptions& options) {
+                   const FilterSampler& filter, Film& film, const RenderOptions& options) {
   const Timer timer;
   const int ts = std::max(1, options.tile_size);
   const int nx = (film.width() + ts - 1) / ts, ny = (film.height() + ts - 1) / ts;
@@ -29,12 +29,12 @@ RenderStats render(const Camera& camera, const Integrator& integrator, const Sam
           // Dimensions in a fixed order: pixel offset, lens, time, then the integrator's.
           s->start_pixel_sample(x, y, i);
           CameraSample cs;
-          const Vec2 offset = s->get_pixel_2d();
-          cs.film = {float(x) + offset.x, float(y) + offset.y};
+          const FilterSample fs = filter.sample(s->get_pixel_2d());
+          cs.film = {float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y};
           cs.lens = s->get_2d();
           cs.time = s->get_1d();
           const Ray ray = camera.generate_ray(cs);
-          film.add_sample(x, y, integrator.li(ray, *s, counter));
+          film.add_sample(x, y, integrator.li(ray, *s, counter), fs.weight);
         }
     rays.fetch_add(counter.rays, std::memory_order_relaxed);
     const size_t n = done.fetch_add(1, std::memory_order_relaxed) + 1;

@@ -6,6 +6,7 @@
 
 #include "penumbra/render/camera/camera.h"
 #include "penumbra/render/film.h"
+#include "penumbra/render/filter/filter_sampler.h"
 #include "penumbra/render/integrator/integrator.h"
 #include "penumbra/render/sampler/sampler.h"
 
@@ -30,9 +31,10 @@ struct RenderStats {
   bool complete() const { return tiles_done == tiles_total; }
 };
 
-/// Renders `film` through `camera` with `integrator`; `sampler` is the prototype cloned per tile.
-/// The result is bit-identical for any thread count and tile order.
+/// Renders `film` through `camera` with `integrator`; `sampler` is the prototype cloned per tile;
+/// pixel sample positions are drawn from `filter` around each pixel centre. The result is
+/// bit-identical for any thread count and tile order.
 RenderStats render(const Camera& camera, const Integrator& integrator, const Sampler& sampler,
-                   Film& film, const RenderOptions& options);
+                   const FilterSampler& filter, Film& film, const RenderOptions& options);
 
 }  // namespace penumbra

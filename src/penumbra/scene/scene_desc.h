@@ -24,6 +24,7 @@ struct RenderSettings {
   std::string integrator = "whitted";
   std::string accel = "bvh";
   std::string sampler = "independent";
+  std::string filter = "box";
   Rgb background{0.0f};  ///< radiance of rays that leave the scene
 };
 

@@ -27,7 +27,7 @@ std::string parse_name(const json& v, const JsonPlace& place) {
 RenderSettings parse_render(const json& v, const JsonPlace& place) {
   if (!v.is_object()) place.fail("expected an object");
   json_check_keys(v, place,
-                  {"resolution", "spp", "max_depth", "seed", "integrator", "accel", "sampler",
+                  {"resolution", "spp", "max_depth", "seed", "integrator", "accel", "sampler", "filter",
                    "background"},
                   "the render section");
   RenderSettings r;
@@ -48,6 +48,7 @@ RenderSettings parse_render(const json& v, const JsonPlace& place) {
   if (const json* name = json_find(v, "accel")) r.accel = parse_name(*name, place.key("accel"));
   if (const json* name = json_find(v, "sampler"))
     r.sampler = parse_name(*name, place.key("sampler"));
+  if (const json* name = json_find(v, "filter")) r.filter = parse_name(*name, place.key("filter"));
   if (const json* bg = json_find(v, "background"))
     r.background = json_radiance(*bg, place.key("background"));
   return r;
