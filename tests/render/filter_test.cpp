@@ -41,7 +41,9 @@ TEST(FilterSampler, TentOffsetsFollowTheTentDensity) {
   for (int b = 0; b < bins; ++b) {
     const double x0 = -1.0 + 2.0 * b / bins, x1 = x0 + 2.0 / bins;
     // Integral of (1 - |x|) over [x0, x1].
-    auto cdf = [](double x) { return x < 0 ? 0.5 * (1 + x) * (1 + x) : 1 - 0.5 * (1 - x) * (1 - x); };
+    auto cdf = [](double x) {
+      return x < 0 ? 0.5 * (1 + x) * (1 + x) : 1 - 0.5 * (1 - x) * (1 - x);
+    };
     const double expected = n * (cdf(x1) - cdf(x0));
     chi2 += (count[size_t(b)] - expected) * (count[size_t(b)] - expected) / expected;
   }

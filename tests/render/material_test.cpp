@@ -10,9 +10,9 @@ namespace penumbra {
 namespace {
 
 TEST(Fresnel, NormalIncidenceAndTotalInternalReflection) {
-  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.5f), 0.04f, 1e-6f);  // ((n-1)/(n+1))^2
-  EXPECT_NEAR(fresnel_dielectric(-1.0f, 1.5f), 0.04f, 1e-6f); // same from inside
-  EXPECT_FLOAT_EQ(fresnel_dielectric(1.0f, 1.0f), 0.0f);      // index-matched: no reflection
+  EXPECT_NEAR(fresnel_dielectric(1.0f, 1.5f), 0.04f, 1e-6f);   // ((n-1)/(n+1))^2
+  EXPECT_NEAR(fresnel_dielectric(-1.0f, 1.5f), 0.04f, 1e-6f);  // same from inside
+  EXPECT_FLOAT_EQ(fresnel_dielectric(1.0f, 1.0f), 0.0f);       // index-matched: no reflection
   // From inside glass beyond the critical angle asin(1/1.5) = 41.8 deg: total reflection.
   EXPECT_FLOAT_EQ(fresnel_dielectric(-std::cos(0.8f), 1.5f), 1.0f);
   EXPECT_LT(fresnel_dielectric(-std::cos(0.7f), 1.5f), 1.0f);

@@ -49,9 +49,10 @@ TEST(Whitted, MirrorReflectsEmitterAndEmissionIsOneSided) {
   EXPECT_NEAR(c.b, 4.0f, 1e-5f);
 
   auto flipped = desc;  // a camera behind the emitter sees its back side
-  flipped.camera = SceneParams(nlohmann::json{{"type", "pinhole"}, {"position", {0, 0, -3}},
-                                              {"look_at", {0, 0, 0}}, {"vfov", 1}},
-                               "test.json", "/camera");
+  flipped.camera = SceneParams(
+      nlohmann::json{
+          {"type", "pinhole"}, {"position", {0, 0, -3}}, {"look_at", {0, 0, 0}}, {"vfov", 1}},
+      "test.json", "/camera");
   EXPECT_EQ(render_desc(flipped).at(1, 1), Rgb(0.0f));
 }
 
@@ -72,8 +73,8 @@ TEST(Whitted, CornellBoxLightWallsAndOrientation) {
       }
   EXPECT_GT(light_pixels, 20);
   const Rgb left = img.at(3, 32), right = img.at(60, 32);
-  EXPECT_GT(left.r, 2.0f * left.g);   // red wall
-  EXPECT_GT(right.g, 2.0f * right.r); // green wall
+  EXPECT_GT(left.r, 2.0f * left.g);    // red wall
+  EXPECT_GT(right.g, 2.0f * right.r);  // green wall
 }
 
 // Renders are bit-identical whatever the thread count.

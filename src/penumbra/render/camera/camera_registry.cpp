@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "penumbra/render/camera/pinhole_camera.h"
+#include "penumbra/render/camera/thin_lens_camera.h"
 
 namespace penumbra {
 
@@ -16,6 +17,8 @@ const std::vector<std::pair<std::string, Factory>>& entries() {
   static const std::vector<std::pair<std::string, Factory>> all = {
       {"pinhole",
        [](const SceneParams& p, int w, int h) { return std::make_unique<PinholeCamera>(p, w, h); }},
+      {"thin_lens", [](const SceneParams& p, int w,
+                       int h) { return std::make_unique<ThinLensCamera>(p, w, h); }},
   };
   return all;
 }

@@ -40,12 +40,15 @@ void PinholeCamera::init(Vec3 position, Vec3 target, Vec3 up, float vfov_deg, in
   inv_h_ = 1.0f / float(height);
 }
 
+Vec3 PinholeCamera::camera_direction(Vec2 film) const {
+  return {tan_half_ * aspect_ * (2.0f * film.x * inv_w_ - 1.0f),
+          tan_half_ * (1.0f - 2.0f * film.y * inv_h_), 1.0f};
+}
+
 Ray PinholeCamera::generate_ray(const CameraSample& s) const {
-  const float x = tan_half_ * aspect_ * (2.0f * s.film.x * inv_w_ - 1.0f);
-  const float y = tan_half_ * (1.0f - 2.0f * s.film.y * inv_h_);
   Ray r;
   r.o = eye_;
-  r.d = normalize(forward_ + right_ * x + up_ * y);
+  r.d = normalize(to_world(camera_direction(s.film)));
   r.time = s.time;
   return r;
 }

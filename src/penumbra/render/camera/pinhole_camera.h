@@ -16,6 +16,11 @@ class PinholeCamera final : public Camera {
   /// A camera from its placement directly (for tests and benchmarks).
   PinholeCamera(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width, int height);
   Ray generate_ray(const CameraSample& s) const override;
+  /// Camera-space direction through film point `film` (unnormalised, z = 1): +x right, +y up.
+  Vec3 camera_direction(Vec2 film) const;
+  /// Camera-space vector to world space.
+  Vec3 to_world(Vec3 v) const { return right_ * v.x + up_ * v.y + forward_ * v.z; }
+  Vec3 eye() const { return eye_; }
 
  private:
   void init(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width, int height);
