@@ -6,6 +6,7 @@
 
 #include "penumbra/core/error.h"
 #include "penumbra/core/params.h"
+#include "penumbra/render/integrator/distribution_integrator.h"
 #include "penumbra/render/integrator/raycast_integrator.h"
 #include "penumbra/render/integrator/whitted_integrator.h"
 
@@ -30,6 +31,10 @@ const std::vector<Entry>& entries() {
       {{"whitted", "recursive ray tracing: point lights, hard shadows, mirrors, refraction"},
        [](const World& w, const ParamList& p, const RenderSettings& s) {
          return std::make_unique<WhittedIntegrator>(w, p, s.max_depth);
+       }},
+      {{"distribution", "distribution ray tracing: soft shadows, glossy, translucency (Cook 1984)"},
+       [](const World& w, const ParamList& p, const RenderSettings& s) {
+         return std::make_unique<DistributionIntegrator>(w, p, s.max_depth);
        }},
   };
   return all;

@@ -38,6 +38,9 @@ class Material {
   virtual int specular_lobes(Vec3 wo, SpecularLobe out[2]) const = 0;
   /// True when `eval` can be non-zero (direct lighting by shadow rays is worth doing).
   virtual bool has_non_specular() const = 0;
+  /// True when the non-specular part is glossy (concentrated, not diffuse): distribution ray
+  /// tracing then also follows directions sampled from the BSDF, weighted against light sampling.
+  virtual bool is_glossy() const { return false; }
   /// A representative reflectance, for debugging views.
   virtual Rgb albedo() const = 0;
 };

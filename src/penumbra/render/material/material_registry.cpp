@@ -3,9 +3,11 @@
 #include <functional>
 #include <utility>
 
+#include "penumbra/render/material/conductor_material.h"
 #include "penumbra/render/material/dielectric_material.h"
 #include "penumbra/render/material/diffuse_material.h"
 #include "penumbra/render/material/mirror_material.h"
+#include "penumbra/render/material/rough_dielectric_material.h"
 
 namespace penumbra {
 
@@ -24,6 +26,8 @@ const std::vector<std::pair<std::string, Factory>>& entries() {
       {"diffuse", create<DiffuseMaterial>},
       {"mirror", create<MirrorMaterial>},
       {"dielectric", create<DielectricMaterial>},
+      {"conductor", create<ConductorMaterial>},
+      {"rough_dielectric", create<RoughDielectricMaterial>},
   };
   return all;
 }
