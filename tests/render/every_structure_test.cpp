@@ -1,6 +1,8 @@
 // Every registered acceleration structure renders the same image.
 #include <gtest/gtest.h>
 
+#include <filesystem>
+
 #include "penumbra/accel/registry.h"
 #include "render_helpers.h"
 
@@ -49,6 +51,33 @@ TEST(EveryStructure, BunnyImagesAreBitIdentical) {
     desc.render.accel = info.name;
     EXPECT_TRUE(test::render_desc(desc) == reference) << info.name;
   }
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// Every bundled scene loads and renders (tiny, one sample) with its own settings, and some pixel
+// receives light.
+TEST(BundledScenes, EveryBundledSceneRendersLight) {
+  int scenes = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(std::string(PENUMBRA_SOURCE_DIR) + "/scenes")) {
+    if (entry.path().extension() != ".json") continue;
+    ++scenes;
+    auto desc = load_scene(entry.path().string());
+    desc.render.width = 24;
+    desc.render.height = 16;
+    desc.render.spp = 1;
+    const RgbImage img = test::render_desc(desc);
+    float max = 0;
+    for (int y = 0; y < img.height(); ++y)
+      for (int x = 0; x < img.width(); ++x) max = std::max(max, img.at(x, y).max_channel());
+    EXPECT_GT(max, 0.0f) << entry.path();
+  }
+  EXPECT_GE(scenes, 5);
 }
 
 }  // namespace
