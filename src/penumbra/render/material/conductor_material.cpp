@@ -36,8 +36,7 @@ Rgb ConductorFresnel::eval(float cos_i) const {
 ConductorMaterial::ConductorMaterial(ConductorFresnel fresnel, float roughness)
     : fresnel_(fresnel),
       distribution_(MicrofacetDistribution::roughness_to_alpha(roughness)),
-      smooth_(MicrofacetDistribution::roughness_to_alpha(roughness) <
-              MicrofacetDistribution::kSmoothAlpha) {}
+      smooth_(distribution_.effectively_smooth()) {}
 
 namespace {
 
@@ -62,7 +61,8 @@ ConductorFresnel read_fresnel(const SceneParams& params) {
     params.fail("type",
                 "a conductor needs \"eta\" and \"k\" (complex index of refraction) or "
                 "\"reflectance\" (Schlick's normal-incidence colour)");
-  if (has_f0) return ConductorFresnel::schlick_f0(get_rgb_in(params, "reflectance", 0, 1, false, "[0, 1]"));
+  if (has_f0)
+    return ConductorFresnel::schlick_f0(get_rgb_in(params, "reflectance", 0, 1, false, "[0, 1]"));
   if (!params.has("eta")) params.fail("eta", "missing: \"eta\" and \"k\" go together");
   if (!params.has("k")) params.fail("k", "missing: \"eta\" and \"k\" go together");
   return ConductorFresnel::complex_ior(get_rgb_in(params, "eta", 0, 100, true, "(0, 100]"),
@@ -119,8 +119,8 @@ std::optional<BsdfSample> ConductorMaterial::sample(Vec3 wo, float, Vec2 u) cons
   if (!(wi.z > 0.0f) || !(wo_h > 0.0f)) return std::nullopt;
   const float pdf = distribution_.d_visible(wo, h) / (4.0f * wo_h);
   if (!(pdf > 0.0f)) return std::nullopt;
-  const Rgb f = fresnel_.eval(wo_h) * (distribution_.d(h) * distribution_.g2_reflection(wo, wi) /
-                                       (4.0f * wo.z * wi.z));
+  const Rgb f = fresnel_.eval(wo_h) *
+                (distribution_.d(h) * distribution_.g2_reflection(wo, wi) / (4.0f * wo.z * wi.z));
   if (back) wi.z = -wi.z;
   return BsdfSample{wi, f, pdf, false};
 }

@@ -44,6 +44,7 @@ class ConductorMaterial final : public Material {
   std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
   int specular_lobes(Vec3 wo, SpecularLobe out[2]) const override;
   bool has_non_specular() const override { return !smooth_; }
+  bool is_glossy() const override { return !smooth_; }
   /// The reflectance at normal incidence.
   Rgb albedo() const override { return fresnel_.eval(1.0f); }
   /// The microfacet distribution.

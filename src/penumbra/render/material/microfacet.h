@@ -29,7 +29,9 @@ class MicrofacetDistribution {
   /// arithmetic; effectively_smooth() tells callers to use a delta lobe instead).
   MicrofacetDistribution(float alpha_x, float alpha_y);
 
+  /// Width along the local x axis.
   float alpha_x() const { return alpha_x_; }
+  /// Width along the local y axis.
   float alpha_y() const { return alpha_y_; }
   /// True when both widths are below kSmoothAlpha: callers should scatter specularly.
   bool effectively_smooth() const { return alpha_x_ < kSmoothAlpha && alpha_y_ < kSmoothAlpha; }
@@ -37,21 +39,21 @@ class MicrofacetDistribution {
   /// Microfacet normal density D(h) per unit solid angle, normalised so that the integral of
   /// D(h) h.z over the hemisphere is 1; zero for h.z <= 0.
   float d(Vec3 h) const;
-  /// Smith's Lambda(w) (Heitz 2014, eq. 86): the masking term's auxiliary function; depends only
+  /// Smith's Lambda(w) (Heitz 2014): the masking term's auxiliary function; depends only
   /// on |w.z|, so it serves both sides of the surface.
   float lambda(Vec3 w) const;
   /// Smith masking G1(w) = 1 / (1 + Lambda(w)) of microfacets that face w.
   float g1(Vec3 w) const { return 1.0f / (1.0f + lambda(w)); }
   /// Height-correlated masking-shadowing for reflection, wo and wi on the same side
-  /// (Heitz 2014, eq. 99): 1 / (1 + Lambda(wo) + Lambda(wi)).
+  /// (Heitz 2014): 1 / (1 + Lambda(wo) + Lambda(wi)).
   float g2_reflection(Vec3 wo, Vec3 wi) const { return 1.0f / (1.0f + lambda(wo) + lambda(wi)); }
   /// Height-correlated masking-shadowing for transmission, wo and wi on opposite sides
-  /// (Heitz 2014, section 6.2): the Beta function B(1 + Lambda(wo), 1 + Lambda(wi)), which is
+  /// (Heitz 2014): the Beta function B(1 + Lambda(wo), 1 + Lambda(wi)), which is
   /// smaller than G1(wo) G1(wi) since high microfacets are seen from above, low ones from below.
   float g2_transmission(Vec3 wo, Vec3 wi) const;
 
   /// Density of visible normals D_w(h) = G1(w) max(0, w.h) D(h) / w.z for a view direction with
-  /// w.z > 0 (Heitz 2014, eq. 38); zero when w.z <= 0.
+  /// w.z > 0 (Heitz 2014); zero when w.z <= 0.
   float d_visible(Vec3 w, Vec3 h) const;
   /// Draws a microfacet normal from D_w for a view direction with w.z > 0 (Heitz 2018, "Sampling
   /// the GGX Distribution of Visible Normals", JCGT 7(4)).
@@ -65,6 +67,8 @@ class MicrofacetDistribution {
 float read_roughness(const SceneParams& params);
 
 /// Mirror reflection of w about the unit normal n.
-inline Vec3 reflect(Vec3 w, Vec3 n) { return n * (2.0f * dot(w, n)) - w; }
+inline Vec3 reflect(Vec3 w, Vec3 n) {
+  return n * (2.0f * dot(w, n)) - w;
+}
 
 }  // namespace penumbra

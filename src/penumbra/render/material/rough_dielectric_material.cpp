@@ -10,7 +10,9 @@ namespace {
 constexpr float kIndexMatched = 1e-3f;
 
 // The view direction on the +z side, as the microsurface sees it from wo's side.
-Vec3 upper(Vec3 w) { return w.z < 0.0f ? -w : w; }
+Vec3 upper(Vec3 w) {
+  return w.z < 0.0f ? -w : w;
+}
 
 }  // namespace
 
@@ -18,9 +20,7 @@ RoughDielectricMaterial::RoughDielectricMaterial(float ior, float roughness, Rgb
     : ior_(ior),
       tint_(tint),
       distribution_(MicrofacetDistribution::roughness_to_alpha(roughness)),
-      smooth_(MicrofacetDistribution::roughness_to_alpha(roughness) <
-                  MicrofacetDistribution::kSmoothAlpha ||
-              std::fabs(ior - 1.0f) < kIndexMatched),
+      smooth_(distribution_.effectively_smooth() || std::fabs(ior - 1.0f) < kIndexMatched),
       specular_(ior, tint) {}
 
 namespace {
@@ -46,8 +46,8 @@ std::optional<RoughDielectricMaterial::HalfVector> RoughDielectricMaterial::half
     Vec3 wo, Vec3 wi) const {
   const float cos_o = cos_theta(wo), cos_i = cos_theta(wi);
   if (cos_o == 0.0f || cos_i == 0.0f) return std::nullopt;
-  const bool reflect = cos_o * cos_i > 0.0f;
-  const float eta = reflect ? 1.0f : (cos_o > 0.0f ? ior_ : 1.0f / ior_);
+  const bool is_reflection = cos_o * cos_i > 0.0f;
+  const float eta = is_reflection ? 1.0f : (cos_o > 0.0f ? ior_ : 1.0f / ior_);
   // h is parallel to eta_o wo + eta_i wi (the mirror half vector when eta = 1), turned outwards.
   Vec3 h = wo + wi * eta;
   const float len = length(h);
@@ -56,7 +56,7 @@ std::optional<RoughDielectricMaterial::HalfVector> RoughDielectricMaterial::half
   if (h.z < 0.0f) h = -h;
   // Microfacets seen from behind by either direction scatter nothing.
   if (!(dot(h, wo) * cos_o > 0.0f) || !(dot(h, wi) * cos_i > 0.0f)) return std::nullopt;
-  return HalfVector{h, eta, reflect};
+  return HalfVector{h, eta, is_reflection};
 }
 
 Rgb RoughDielectricMaterial::value(Vec3 wo, Vec3 wi, const HalfVector& hv, float fr) const {

@@ -27,6 +27,7 @@ class RoughDielectricMaterial final : public Material {
   std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
   int specular_lobes(Vec3 wo, SpecularLobe out[2]) const override;
   bool has_non_specular() const override { return !smooth_; }
+  bool is_glossy() const override { return !smooth_; }
   Rgb albedo() const override { return tint_; }
   /// The microfacet distribution.
   const MicrofacetDistribution& distribution() const { return distribution_; }
@@ -36,9 +37,9 @@ class RoughDielectricMaterial final : public Material {
  private:
   /// The generalised half vector of a pair of directions and what it implies.
   struct HalfVector {
-    Vec3 h;       ///< microfacet normal, h.z > 0
-    float eta;    ///< index on wi's side / index on wo's side (1 for reflection)
-    bool reflect; ///< wo and wi on the same side
+    Vec3 h;        ///< microfacet normal, h.z > 0
+    float eta;     ///< index on wi's side / index on wo's side (1 for reflection)
+    bool reflect;  ///< wo and wi on the same side
   };
   /// The microfacet normal that scatters wo into wi (Walter et al. 2007); none for
   /// grazing directions or when the microfacet would face away from either direction.
