@@ -64,6 +64,7 @@ TEST_F(CliTest, HelpListsEverySubcommandAndRenderFlag) {
   ASSERT_EQ(run("--help"), 0);
   EXPECT_NE(out_.find("render"), std::string::npos);
   EXPECT_NE(out_.find("accel-bench"), std::string::npos);
+  EXPECT_NE(out_.find("collide"), std::string::npos);
   ASSERT_EQ(run("render --help"), 0);
   for (const char* flag : {"--spp", "--threads", "--seed", "--accel", "--integrator",
                            "--resolution", "--output"})

@@ -5,7 +5,12 @@
 #include <fmt/format.h>
 
 #include "penumbra/accel/brute_force.h"
+#include "penumbra/accel/bsp_tree.h"
 #include "penumbra/accel/bvh.h"
+#include "penumbra/accel/kdtree.h"
+#include "penumbra/accel/octree.h"
+#include "penumbra/accel/uniform_grid.h"
+#include "penumbra/accel/wide_bvh.h"
 #include "penumbra/core/error.h"
 
 namespace penumbra {
@@ -26,7 +31,13 @@ std::unique_ptr<Accelerator> create(const ParamList& p) {
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> all = {
       {{"brute", "brute force: every primitive for every ray (the reference)"}, create<BruteForce>},
-      {{"bvh", "binary BVH, binned SAH build (leaf=8, bins=16, trav=1)"}, create<Bvh>},
+      {{"bvh", "binary BVH, binned SAH build (leaf=8, bins=16, trav=2)"}, create<Bvh>},
+      {{"bsp", "3D BSP by auto-partition (order=random|first|fewest-cuts, seed=1, depth=256)"}, create<BspTree>},
+      {{"grid", "uniform grid, exact cell overlap, 3D-DDA, mailbox (lambda=1)"}, create<UniformGrid>},
+      {{"octree", "octree, exact octant overlap, front-to-back walk, mailbox (leaf=16, depth=16)"}, create<Octree>},
+      {{"bvh4", "4-wide BVH collapsed from the binary one, SIMD box tests"}, create<WideBvh<4>>},
+      {{"bvh8", "8-wide BVH collapsed from the binary one, SIMD box tests"}, create<WideBvh<8>>},
+      {{"kdtree", "kd-tree, O(N log N) SAH build with perfect splits (sah|median|gap, ct=1, ci=0.2)"}, create<KdTree>},
   };
   return all;
 }

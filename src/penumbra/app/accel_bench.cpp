@@ -7,8 +7,8 @@
 #include <optional>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
 #include "penumbra/accel/registry.h"
@@ -95,13 +95,16 @@ void measure(Row& row, const RaySets& rays, const Intersect& intersect, const Oc
     intersect(r, h);
   });
   std::vector<Hit> hits(rays.incoherent.size());
-  row.incoherent = throughput(rays.incoherent, [&](const Ray& r, size_t i) { intersect(r, hits[i]); });
+  row.incoherent =
+      throughput(rays.incoherent, [&](const Ray& r, size_t i) { intersect(r, hits[i]); });
   row.occlusion = throughput(rays.incoherent, [&](const Ray& r, size_t) { occluded(r); });
   if (!rays.reference.empty()) {
     size_t mismatches = 0, ties = 0;
     for (size_t i = 0; i < hits.size(); ++i) {
-      if (differs(hits[i], rays.reference[i])) ++mismatches;
-      else if (hits[i].prim != rays.reference[i].prim) ++ties;
+      if (differs(hits[i], rays.reference[i]))
+        ++mismatches;
+      else if (hits[i].prim != rays.reference[i].prim)
+        ++ties;
     }
     row.mismatches = mismatches, row.ties = ties;
   }
@@ -109,27 +112,37 @@ void measure(Row& row, const RaySets& rays, const Intersect& intersect, const Oc
 }
 
 void print_table(const std::vector<Row>& rows) {
-  fmt::print("{:<22} {:>10} {:>10} {:>10} {:>6} {:>10} {:>10} {:>10} {:>12}\n", "accel",
-             "build ms", "MiB", "nodes", "depth", "primary", "incoher.", "occlusion", "vs embree");
+  fmt::print("{:<22} {:>10} {:>10} {:>10} {:>6} {:>10} {:>10} {:>10} {:>12}\n", "accel", "build ms",
+             "MiB", "nodes", "depth", "primary", "incoher.", "occlusion", "vs embree");
   for (const Row& r : rows) {
-    const std::string cmp = r.mismatches ? fmt::format("{} ({} ties)", *r.mismatches, *r.ties) : "-";
+    const std::string cmp =
+        r.mismatches ? fmt::format("{} ({} ties)", *r.mismatches, *r.ties) : "-";
+    // Embree reports neither nodes nor depth.
+    const bool shape = r.accel != "embree";
     fmt::print("{:<22} {:>10.1f} {:>10.1f} {:>10} {:>6} {:>10.2f} {:>10.2f} {:>10.2f} {:>12}\n",
-               r.accel, r.build_ms, double(r.bytes) / (1 << 20), r.nodes, r.depth, r.primary,
-               r.incoherent, r.occlusion, cmp);
+               r.accel, r.build_ms, double(r.bytes) / (1 << 20),
+               shape ? std::to_string(r.nodes) : "-", shape ? std::to_string(r.depth) : "-",
+               r.primary, r.incoherent, r.occlusion, cmp);
   }
-  fmt::print("(Mrays/s; 'vs embree': incoherent closest hits differing from Embree's, hit vs miss "
-             "or t beyond 1e-4 relative; ties: same t, another triangle)\n");
+  fmt::print(
+      "(Mrays/s; 'vs embree': incoherent closest hits differing from Embree's, hit vs miss "
+      "or t beyond 1e-4 relative; ties: same t, another triangle)\n");
 }
 
 void write_json(const std::string& path, const std::vector<Row>& rows, const std::string& mesh,
                 size_t triangles, int threads) {
   nlohmann::json out = nlohmann::json::array();
   for (const Row& r : rows) {
-    nlohmann::json o = {{"accel", r.accel},           {"threads", threads},
-                        {"build_ms", r.build_ms},     {"bytes", r.bytes},
-                        {"nodes", r.nodes},           {"depth", r.depth},
-                        {"primary_mrays", r.primary}, {"incoherent_mrays", r.incoherent},
-                        {"occlusion_mrays", r.occlusion}, {"triangles", triangles},
+    nlohmann::json o = {{"accel", r.accel},
+                        {"threads", threads},
+                        {"build_ms", r.build_ms},
+                        {"bytes", r.bytes},
+                        {"nodes", r.nodes},
+                        {"depth", r.depth},
+                        {"primary_mrays", r.primary},
+                        {"incoherent_mrays", r.incoherent},
+                        {"occlusion_mrays", r.occlusion},
+                        {"triangles", triangles},
                         {"mesh", mesh}};
     if (r.mismatches) o["embree_mismatches"] = *r.mismatches;
     out.push_back(o);
@@ -162,8 +175,8 @@ void run_accel_bench(const AccelBenchArgs& args) {
   const ThreadLimit limit(args.threads);
   const int threads = thread_count();
   if (args.input.size() >= 5 && args.input.substr(args.input.size() - 5) == ".json")
-    throw Error(fmt::format("{}: accel-bench does not read scene files yet; give a mesh (.obj, .ply)",
-                            args.input));
+    throw Error(fmt::format(
+        "{}: accel-bench does not read scene files yet; give a mesh (.obj, .ply)", args.input));
   const Timer load_timer;
   const TriangleMesh mesh = read_mesh(args.input);
   PrimitiveSet prims;
@@ -190,10 +203,10 @@ void run_accel_bench(const AccelBenchArgs& args) {
   RaySets rays;
   rays.primary = primary_rays(prims.bounds(), kImageSide, kImageSide);
   rays.incoherent = incoherent_rays(prims.bounds(), args.rays, kRaySeed);
-  fmt::print("rays: {} primary ({}x{} pinhole), {} incoherent (closest hit), the same {} as "
-             "occlusion queries with tmax = infinity\n",
-             rays.primary.size(), kImageSide, kImageSide, rays.incoherent.size(),
-             rays.incoherent.size());
+  fmt::print(
+      "rays: {} primary ({}x{} pinhole), {} incoherent (closest hit), the same {} as "
+      "occlusion queries with tmax = infinity\n",
+      rays.primary.size(), kImageSide, kImageSide, rays.incoherent.size(), rays.incoherent.size());
 
   std::vector<Row> rows;
   if (have_embree()) {

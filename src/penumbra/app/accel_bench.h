@@ -12,11 +12,11 @@ namespace penumbra::app {
 
 /// The options of one benchmark run.
 struct AccelBenchArgs {
-  std::string input;            ///< mesh (.obj, .ply) or scene (.json, not yet supported)
-  std::string accels = "all";   ///< comma-separated NAME[:params], or "all"
-  int threads = 0;              ///< worker threads; 0 = all cores
-  std::string json;             ///< when set, results are also written here as a JSON array
-  size_t rays = 1'000'000;      ///< incoherent (and occlusion) rays
+  std::string input;           ///< mesh (.obj, .ply) or scene (.json, not yet supported)
+  std::string accels = "all";  ///< comma-separated NAME[:params], or "all"
+  int threads = 0;             ///< worker threads; 0 = all cores
+  std::string json;            ///< when set, results are also written here as a JSON array
+  size_t rays = 1'000'000;     ///< incoherent (and occlusion) rays
 };
 
 /// Registers the `accel-bench` subcommand on `app`.

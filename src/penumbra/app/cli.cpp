@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "penumbra/app/accel_bench.h"
+#include "penumbra/app/collide_command.h"
 #include "penumbra/app/render_command.h"
 #include "penumbra/core/error.h"
 
@@ -19,6 +20,7 @@ int run_cli(int argc, char** argv) {
   app.set_version_flag("--version", "penumbra 0.1.0");
   add_render_command(app);
   add_accel_bench_command(app);
+  add_collide_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

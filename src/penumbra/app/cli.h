@@ -1,5 +1,5 @@
 #pragma once
-/// The command-line interface: subcommands render and accel-bench.
+/// The command-line interface: subcommands render, accel-bench and collide.
 
 namespace penumbra::app {
 

@@ -16,7 +16,9 @@ namespace penumbra::app {
 
 #ifdef PENUMBRA_HAVE_EMBREE
 
-bool have_embree() { return true; }
+bool have_embree() {
+  return true;
+}
 
 struct EmbreeScene::Impl {
   RTCDevice device = nullptr;
@@ -71,15 +73,19 @@ EmbreeScene::EmbreeScene(const TriangleMesh& mesh, int threads) : impl_(std::mak
 
 EmbreeScene::~EmbreeScene() = default;
 
-double EmbreeScene::build_ms() const { return impl_->build_ms; }
-size_t EmbreeScene::bytes() const { return size_t(std::max(0LL, impl_->bytes.load())); }
+double EmbreeScene::build_ms() const {
+  return impl_->build_ms;
+}
+size_t EmbreeScene::bytes() const {
+  return size_t(std::max(0LL, impl_->bytes.load()));
+}
 
 bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
   alignas(16) RTCRayHit rh;
-  rh.ray = {ray.o.x, ray.o.y, ray.o.z, ray.tmin, ray.d.x, ray.d.y, ray.d.z, 0.0f,
-            ray.tmax, ~0u, 0, 0};
+  rh.ray = {ray.o.x, ray.o.y, ray.o.z,  ray.tmin, ray.d.x, ray.d.y,
+            ray.d.z, 0.0f,    ray.tmax, ~0u,      0,       0};
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
   rtcIntersect1(impl_->scene, &ctx, &rh);
@@ -92,24 +98,34 @@ bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
 bool EmbreeScene::occluded(const Ray& ray) const {
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  alignas(16) RTCRay r = {ray.o.x, ray.o.y, ray.o.z, ray.tmin, ray.d.x, ray.d.y, ray.d.z,
-                          0.0f,    ray.tmax, ~0u,     0,        0};
+  alignas(16) RTCRay r = {ray.o.x, ray.o.y, ray.o.z,  ray.tmin, ray.d.x, ray.d.y,
+                          ray.d.z, 0.0f,    ray.tmax, ~0u,      0,       0};
   rtcOccluded1(impl_->scene, &ctx, &r);
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on occlusion
 }
 
 #else
 
-bool have_embree() { return false; }
+bool have_embree() {
+  return false;
+}
 struct EmbreeScene::Impl {};
 EmbreeScene::EmbreeScene(const TriangleMesh&, int) {
   throw Error("this penumbra was built without Embree");
 }
 EmbreeScene::~EmbreeScene() = default;
-double EmbreeScene::build_ms() const { return 0; }
-size_t EmbreeScene::bytes() const { return 0; }
-bool EmbreeScene::intersect(const Ray&, Hit&) const { return false; }
-bool EmbreeScene::occluded(const Ray&) const { return false; }
+double EmbreeScene::build_ms() const {
+  return 0;
+}
+size_t EmbreeScene::bytes() const {
+  return 0;
+}
+bool EmbreeScene::intersect(const Ray&, Hit&) const {
+  return false;
+}
+bool EmbreeScene::occluded(const Ray&) const {
+  return false;
+}
 
 #endif
 

@@ -100,7 +100,7 @@ class PrimitiveSet {
   size_t bytes() const;
 
  private:
-  uint32_t push(PrimKind kind, uint32_t slot, PrimOrigin origin, const Bounds3& b);
+  uint32_t push(PrimKind kind, uint32_t slot, PrimOrigin origin);
 
   std::vector<PrimKind> kinds_;
   std::vector<uint32_t> slot_;  ///< index into the per-kind array

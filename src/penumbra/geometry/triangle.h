@@ -3,6 +3,7 @@
 /// Intersection", JCGT 2(1)): no ray passes between two triangles sharing an edge, and a ray
 /// through a shared edge or vertex hits at least one of them. Degenerate (zero-area) and
 /// non-finite triangles are never hit.
+#include <algorithm>
 #include <cmath>
 
 #include "penumbra/geometry/float_error.h"
@@ -20,22 +21,25 @@ inline bool intersect_triangle(const PreparedRay& pr, Vec3 a, Vec3 b, Vec3 c, fl
   const float ax = A[pr.kx] - pr.sx * A[pr.kz], ay = A[pr.ky] - pr.sy * A[pr.kz];
   const float bx = B[pr.kx] - pr.sx * B[pr.kz], by = B[pr.ky] - pr.sy * B[pr.kz];
   const float cx = C[pr.kx] - pr.sx * C[pr.kz], cy = C[pr.ky] - pr.sy * C[pr.kz];
-  // Scaled barycentrics as 2D edge functions.
-  float U = cx * by - cy * bx, V = ax * cy - ay * cx, W = bx * ay - by * ax;
-  if (U == 0.0f || V == 0.0f || W == 0.0f) {
-    // Recompute in double on an edge, as the paper prescribes, for a consistent sign.
-    U = float(double(cx) * by - double(cy) * bx);
-    V = float(double(ax) * cy - double(ay) * cx);
-    W = float(double(bx) * ay - double(by) * ax);
-  }
-  if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) return false;
+  // Scaled barycentrics as 2D edge functions, always in double (the paper falls back to double
+  // only when one is zero). Products of floats are exact in double, so each edge function is
+  // rounded once and is exactly the negative of the same edge seen from the neighbouring
+  // triangle, even when the compiler fuses a * b - c * d into an FMA; in float, such fusion
+  // breaks that symmetry and lets rays slip through shared edges.
+  const auto U = float(double(cx) * by - double(cy) * bx);
+  const auto V = float(double(ax) * cy - double(ay) * cx);
+  const auto W = float(double(bx) * ay - double(by) * ax);
+  // Outside when the edge functions have mixed signs (one test on their min and max, fewer
+  // branches for incoherent rays to mispredict).
+  if (std::min(U, std::min(V, W)) < 0.0f && std::max(U, std::max(V, W)) > 0.0f) return false;
   const float det = U + V + W;
   if (!(std::fabs(det) > 0.0f)) return false;  // degenerate, or NaN
   const float az = pr.sz * A[pr.kz], bz = pr.sz * B[pr.kz], cz = pr.sz * C[pr.kz];
   const float T = U * az + V * bz + W * cz;
-  // Range test on the scaled distance, without dividing yet.
-  if (det > 0.0f ? (T <= tmin * det || T >= tmax * det) : (T >= tmin * det || T <= tmax * det))
-    return false;
+  // Range test on the scaled distance, without dividing yet; with the sign of det moved onto T
+  // (exact), one comparison pair serves both orientations.
+  const float adet = std::fabs(det), sT = std::signbit(det) ? -T : T;
+  if (sT <= tmin * adet || sT >= tmax * adet) return false;
   const float inv = 1.0f / det;
   t = T * inv;
   // Reject a hit closer to the origin than the rounding error of t: a ray leaving a surface (its

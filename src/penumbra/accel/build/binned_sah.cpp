@@ -6,34 +6,124 @@
 
 #include "penumbra/core/parallel.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace penumbra {
 
 namespace {
 
 /// References per parallel binning task: fixed, so the chunking never depends on the thread count.
 constexpr size_t kBinChunk = 32768;
+/// Nodes with at least this many references bin into two alternating bin sets.
+constexpr size_t kSpareMin = 256;
 
-/// Bin boxes and counts of the three axes.
+/// A growing box of 4-float vectors with a branch-free surface area (0 while empty).
+struct BoxAccumulator {
+#if defined(__SSE2__)
+  __m128 lo = _mm_set1_ps(kInfinity), hi = _mm_set1_ps(-kInfinity);
+  void add(const float* l, const float* h) {
+    lo = _mm_min_ps(lo, _mm_load_ps(l));
+    hi = _mm_max_ps(hi, _mm_load_ps(h));
+  }
+  float area() const {
+    alignas(16) float d[4];
+    _mm_store_ps(d, _mm_max_ps(_mm_sub_ps(hi, lo), _mm_setzero_ps()));
+    return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+  }
+#else
+  float lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
+  void add(const float* l, const float* h) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], l[k]), hi[k] = std::max(hi[k], h[k]);
+  }
+  float area() const {
+    float d[3];
+    for (int k = 0; k < 3; ++k) d[k] = std::max(hi[k] - lo[k], 0.0f);
+    return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
+  }
+#endif
+};
+
+/// Bin boxes (as 4-float lo and hi vectors, the 4th lane unused) and counts of the three axes.
 struct BinSet {
-  Bounds3 box[3][kMaxBins];
-  uint32_t count[3][kMaxBins] = {};
+  int bins;
+  alignas(16) float lo[3][kMaxBins][4];
+  alignas(16) float hi[3][kMaxBins][4];
+  uint32_t count[3][kMaxBins];
 
-  /// Adds `refs` to the bins of `map`.
-  void add(std::span<const PrimRef> refs, const BinMapping& map) {
+  /// Empty bins (only the `bins` in use are initialised).
+  explicit BinSet(int bins_) : bins(bins_) {
+    for (int a = 0; a < 3; ++a)
+      for (int i = 0; i < bins; ++i) {
+        for (int k = 0; k < 4; ++k) lo[a][i][k] = kInfinity, hi[a][i][k] = -kInfinity;
+        count[a][i] = 0;
+      }
+  }
+
+  /// Adds one reference (SIMD: `org`, `scl` and `top` come from the mapping, see add()).
+#if defined(__SSE2__)
+  void add_one(const PrimRef& r, __m128 org, __m128 scl, __m128 top) {
+    const __m128 l = _mm_load_ps(&r.lo.x), h = _mm_load_ps(&r.hi.x);
+    __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(l, h), org), scl);
+    f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top);
+    alignas(16) int32_t b[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(b), _mm_cvttps_epi32(f));
+    for (int a = 0; a < 3; ++a) {
+      _mm_store_ps(lo[a][b[a]], _mm_min_ps(_mm_load_ps(lo[a][b[a]]), l));
+      _mm_store_ps(hi[a][b[a]], _mm_max_ps(_mm_load_ps(hi[a][b[a]]), h));
+      ++count[a][b[a]];
+    }
+  }
+#endif
+
+  /// Adds `refs` to the bins of `map`; `spare` (same bin count) takes every other reference.
+  /// Neighbouring references mostly fall into the same bins, and alternating between two bin
+  /// sets halves the chains of dependent read-modify-writes on one bin.
+  void add(std::span<const PrimRef> refs, const BinMapping& map, BinSet* spare) {
+#if defined(__SSE2__)
+    // The clamp reproduces BinMapping::bin exactly (max_ps(NaN, 0) is 0), so partitioning
+    // agrees with the bins.
+    const __m128 org = _mm_setr_ps(map.origin.x, map.origin.y, map.origin.z, 0.0f);
+    const __m128 scl = _mm_setr_ps(map.scale.x, map.scale.y, map.scale.z, 0.0f);
+    const __m128 top = _mm_set1_ps(float(bins - 1));
+    size_t i = 0;
+    if (spare)
+      for (; i + 1 < refs.size(); i += 2) {
+        add_one(refs[i], org, scl, top);
+        spare->add_one(refs[i + 1], org, scl, top);
+      }
+    for (; i < refs.size(); ++i) add_one(refs[i], org, scl, top);
+#else
+    (void)spare;
     for (const PrimRef& r : refs) {
       const Vec3 c = r.centroid2();
-      const Bounds3 b = r.bounds();
       for (int a = 0; a < 3; ++a) {
         const int i = map.bin(c[a], a);
-        box[a][i].extend(b);
+        for (int k = 0; k < 3; ++k)
+          lo[a][i][k] = std::min(lo[a][i][k], r.lo[k]),
+          hi[a][i][k] = std::max(hi[a][i][k], r.hi[k]);
         ++count[a][i];
       }
     }
+#endif
   }
   /// Adds the bins of `o` (exact: min, max and integer sums).
-  void merge(const BinSet& o, int bins) {
+  void merge(const BinSet& o) {
     for (int a = 0; a < 3; ++a)
-      for (int i = 0; i < bins; ++i) box[a][i].extend(o.box[a][i]), count[a][i] += o.count[a][i];
+      for (int i = 0; i < bins; ++i) {
+        for (int k = 0; k < 4; ++k)
+          lo[a][i][k] = std::min(lo[a][i][k], o.lo[a][i][k]),
+          hi[a][i][k] = std::max(hi[a][i][k], o.hi[a][i][k]);
+        count[a][i] += o.count[a][i];
+      }
+  }
+  /// Box of bin i on axis a.
+  Bounds3 box(int a, int i) const {
+    Bounds3 b;
+    b.lo = {lo[a][i][0], lo[a][i][1], lo[a][i][2]};
+    b.hi = {hi[a][i][0], hi[a][i][1], hi[a][i][2]};
+    return b;
   }
 };
 
@@ -41,15 +131,22 @@ struct BinSet {
 void bin_refs(std::span<const PrimRef> refs, const BinMapping& map, bool parallel, BinSet& out) {
   const size_t chunks = (refs.size() + kBinChunk - 1) / kBinChunk;
   if (!parallel || chunks < 2) {
-    out.add(refs, map);
+    if (refs.size() < kSpareMin) {
+      out.add(refs, map, nullptr);
+    } else {
+      BinSet spare(map.bins);
+      out.add(refs, map, &spare);
+      out.merge(spare);
+    }
     return;
   }
-  std::vector<BinSet> partial(chunks);
+  std::vector<BinSet> partial(2 * chunks, BinSet(map.bins));
   parallel_for(chunks, [&](size_t c) {
     const size_t begin = c * kBinChunk;
-    partial[c].add(refs.subspan(begin, std::min(kBinChunk, refs.size() - begin)), map);
+    const auto part = refs.subspan(begin, std::min(kBinChunk, refs.size() - begin));
+    partial[2 * c].add(part, map, &partial[2 * c + 1]);
   });
-  for (const BinSet& p : partial) out.merge(p, map.bins);  // in chunk order
+  for (const BinSet& p : partial) out.merge(p);  // in chunk order
 }
 
 }  // namespace
@@ -65,7 +162,7 @@ BinMapping::BinMapping(const Bounds3& centroid_bounds, int bins_) : bins(bins_) 
 }
 
 SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map, bool parallel) {
-  BinSet set;
+  BinSet set(map.bins);
   bin_refs(refs, map, parallel, set);
   const int nb = map.bins;
   SahSplit best;
@@ -74,61 +171,103 @@ SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map,
     // Sweep from the right: area and count of bins [i, nb).
     float right_area[kMaxBins];
     uint32_t right_count[kMaxBins];
-    Bounds3 acc;
+    BoxAccumulator acc;
     uint32_t n = 0;
     for (int i = nb - 1; i > 0; --i) {
-      acc.extend(set.box[a][i]);
+      acc.add(set.lo[a][i], set.hi[a][i]);
       n += set.count[a][i];
-      right_area[i] = acc.surface_area(), right_count[i] = n;
+      right_area[i] = acc.area(), right_count[i] = n;
     }
     // Sweep from the left, evaluating the cost at each boundary; ties keep the first split.
-    acc = Bounds3{};
+    acc = BoxAccumulator();
     n = 0;
     for (int i = 1; i < nb; ++i) {
-      acc.extend(set.box[a][i - 1]);
+      acc.add(set.lo[a][i - 1], set.hi[a][i - 1]);
       n += set.count[a][i - 1];
       if (n == 0 || right_count[i] == 0) continue;
-      const float cost = acc.surface_area() * float(n) + right_area[i] * float(right_count[i]);
+      const float cost = acc.area() * float(n) + right_area[i] * float(right_count[i]);
       if (best.axis < 0 || cost < best.cost) best.axis = a, best.pos = i, best.cost = cost;
     }
   }
   if (best.axis < 0) return best;
   for (int i = 0; i < nb; ++i) {
     const int a = best.axis;
-    if (i < best.pos) best.left.extend(set.box[a][i]), best.left_count += set.count[a][i];
-    else best.right.extend(set.box[a][i]), best.right_count += set.count[a][i];
+    if (i < best.pos)
+      best.left.extend(set.box(a, i)), best.left_count += set.count[a][i];
+    else
+      best.right.extend(set.box(a, i)), best.right_count += set.count[a][i];
   }
   return best;
 }
 
-size_t partition_refs(std::span<PrimRef> refs, const BinMapping& map, const SahSplit& split,
-                      Bounds3& left_centroids, Bounds3& right_centroids) {
-  const int a = split.axis;
+namespace {
+
+/// Centroid bounds (of lo + hi) grown one reference at a time; SIMD where available.
+struct CentroidBounds {
+#if defined(__SSE2__)
+  __m128 lo = _mm_set1_ps(kInfinity), hi = _mm_set1_ps(-kInfinity);
+  void add(const PrimRef& r) {
+    const __m128 c = _mm_add_ps(_mm_load_ps(&r.lo.x), _mm_load_ps(&r.hi.x));
+    lo = _mm_min_ps(lo, c);
+    hi = _mm_max_ps(hi, c);
+  }
+  Bounds3 get() const {
+    alignas(16) float l[4], h[4];
+    _mm_store_ps(l, lo);
+    _mm_store_ps(h, hi);
+    Bounds3 b;
+    b.lo = {l[0], l[1], l[2]};
+    b.hi = {h[0], h[1], h[2]};
+    return b;
+  }
+#else
+  Bounds3 b;
+  void add(const PrimRef& r) {
+    b.extend(r.centroid2());
+  }
+  Bounds3 get() const {
+    return b;
+  }
+#endif
+};
+
+/// Partition along a fixed axis A (the axis is a template parameter, so the centroid coordinate
+/// is a plain member read in the loop).
+template <int A>
+size_t partition_axis(std::span<PrimRef> refs, const BinMapping& map, int pos, Bounds3& left,
+                      Bounds3& right) {
+  const auto coord = [](Vec3 v) { return A == 0 ? v.x : (A == 1 ? v.y : v.z); };
+  const auto goes_left = [&](const PrimRef& r) {
+    return map.bin(coord(r.lo) + coord(r.hi), A) < pos;  // lo + hi as in centroid2()
+  };
   size_t i = 0, j = refs.size();
-  Bounds3 lc, rc;
+  CentroidBounds lc, rc;
   // Hoare-style: grow the left part from the front and the right part from the back.
   while (true) {
-    while (i < j) {
-      const Vec3 c = refs[i].centroid2();
-      if (map.bin(c[a], a) >= split.pos) break;
-      lc.extend(c);
-      ++i;
-    }
-    while (i < j) {
-      const Vec3 c = refs[j - 1].centroid2();
-      if (map.bin(c[a], a) < split.pos) break;
-      rc.extend(c);
-      --j;
-    }
+    while (i < j && goes_left(refs[i])) lc.add(refs[i++]);
+    while (i < j && !goes_left(refs[j - 1])) rc.add(refs[--j]);
     if (i >= j) break;
     // refs[i] belongs right and refs[j - 1] left: swap, then both are placed.
     std::swap(refs[i], refs[j - 1]);
-    lc.extend(refs[i].centroid2());
-    rc.extend(refs[j - 1].centroid2());
-    ++i, --j;
+    lc.add(refs[i++]);
+    rc.add(refs[--j]);
   }
-  left_centroids = lc, right_centroids = rc;
+  left = lc.get(), right = rc.get();
   return i;
+}
+
+}  // namespace
+
+size_t partition_refs(std::span<PrimRef> refs, const BinMapping& map, const SahSplit& split,
+                      Bounds3& left_centroids, Bounds3& right_centroids) {
+  switch (split.axis) {
+    case 0:
+      return partition_axis<0>(refs, map, split.pos, left_centroids, right_centroids);
+    case 1:
+      return partition_axis<1>(refs, map, split.pos, left_centroids, right_centroids);
+    default:
+      return partition_axis<2>(refs, map, split.pos, left_centroids, right_centroids);
+  }
 }
 
 }  // namespace penumbra

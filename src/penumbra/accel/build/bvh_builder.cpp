@@ -1,7 +1,6 @@
 #include "penumbra/accel/build/bvh_builder.h"
 
 #include <algorithm>
-#include <memory>
 
 #include <oneapi/tbb/parallel_invoke.h>
 
@@ -11,7 +10,8 @@ namespace {
 
 /// Recursive builder into a scratch node array in which the subtree over references [b, e) owns
 /// the 2 (e - b) - 2 slots after its own children: disjoint regions make the node indices (and so
-/// the tree) independent of the order in which parallel tasks run. A final pass compacts it.
+/// the tree) independent of the order in which parallel tasks run. The root sits at 0 and slot 1
+/// is padding, so every child pair starts at an even index. A final pass may compact it.
 class Builder {
  public:
   Builder(const BvhBuildParams& p, PrimRef* refs, BvhNode* scratch)
@@ -32,9 +32,9 @@ class Builder {
 
     // Binned SAH split, unless the tree is already too deep.
     SahSplit split;
-    BinMapping map(centroids, p_.bins);
-    if (depth < kMaxSahDepth)
-      split = find_binned_split({refs_ + b, n}, map, n >= p_.parallel_min);
+    // Fewer bins for small nodes: the sweep costs O(bins) whatever the node size.
+    BinMapping map(centroids, std::min(p_.bins, std::max(4, int(n))));
+    if (depth < kMaxSahDepth) split = find_binned_split({refs_ + b, n}, map, n >= p_.parallel_min);
     if (split.axis >= 0 && n <= uint32_t(p_.max_leaf)) {
       // Leaf cost n against traversal + SAH-weighted children, both scaled by the node's area.
       const float area = box.surface_area();
@@ -90,7 +90,8 @@ class Builder {
   }
 
   void child_bounds(uint32_t b, uint32_t e, Bounds3& box, Bounds3& centroids) const {
-    for (uint32_t i = b; i < e; ++i) box.extend(refs_[i].bounds()), centroids.extend(refs_[i].centroid2());
+    for (uint32_t i = b; i < e; ++i)
+      box.extend(refs_[i].bounds()), centroids.extend(refs_[i].centroid2());
   }
 
   const BvhBuildParams& p_;
@@ -122,18 +123,27 @@ BvhNodeArray compact(const BvhNode* scratch, size_t leaves) {
 
 }  // namespace
 
-BinaryBvh build_binary_bvh(PrimRefs in, const BvhBuildParams& params) {
+BvhBuildParams read_bvh_build_params(const ParamList& params) {
+  BvhBuildParams p;
+  p.max_leaf = int(params.get_int("leaf", p.max_leaf, 1, 64));
+  p.bins = int(params.get_int("bins", p.bins, 2, kMaxBins));
+  p.traversal_cost = float(params.get_real("trav", p.traversal_cost, 0.0, 100.0));
+  return p;
+}
+
+BinaryBvh build_binary_bvh(PrimRefs in, const BvhBuildParams& params, bool compact_nodes) {
   BinaryBvh out;
   out.refs = std::move(in.refs);
   const auto n = static_cast<uint32_t>(out.refs.size());
   if (n == 0) return out;
-  // Scratch nodes, left uninitialised: the build writes every slot it later reads.
-  std::unique_ptr<BvhNode[]> scratch(new BvhNode[2 * size_t(n)]);
-  Builder builder(params, out.refs.data(), scratch.get());
-  const Builder::Result r = builder.build(0, 0, n, 1, in.bounds, in.centroid_bounds, 0);
+  // Scratch nodes: the build writes every slot it later reads.
+  BvhNodeArray scratch(2 * size_t(n));
+  scratch[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
+  Builder builder(params, out.refs.data(), scratch.data());
+  const Builder::Result r = builder.build(0, 0, n, 2, in.bounds, in.centroid_bounds, 0);
   out.leaves = r.leaves;
   out.max_depth = r.depth;
-  out.nodes = compact(scratch.get(), r.leaves);
+  out.nodes = compact_nodes ? compact(scratch.data(), r.leaves) : std::move(scratch);
   return out;
 }
 

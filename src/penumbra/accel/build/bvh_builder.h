@@ -9,27 +9,33 @@
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_node.h"
 #include "penumbra/accel/build/prim_ref.h"
+#include "penumbra/core/params.h"
 
 namespace penumbra {
 
 /// Settings of the binary BVH build.
 struct BvhBuildParams {
-  int bins = 16;                 ///< SAH bins per axis, in [2, kMaxBins]
-  int max_leaf = 8;              ///< most references in one leaf
-  float traversal_cost = 1.0f;   ///< cost of an inner node relative to one primitive test
-  size_t parallel_min = 4096;    ///< nodes with more references build their children as tasks
+  int bins = 16;                ///< SAH bins per axis, in [2, kMaxBins]
+  int max_leaf = 8;             ///< most references in one leaf
+  float traversal_cost = 2.0f;  ///< cost of an inner node relative to one primitive test
+  size_t parallel_min = 4096;   ///< nodes with more references build their children as tasks
 };
 
-/// A built binary BVH. nodes[0] is the root and nodes[1] is padding, so that every pair of
-/// children starts at an even index (one cache line); `refs` are in leaf order.
-struct BinaryBvh {
-  BvhNodeArray nodes;         ///< root, padding, then child pairs in depth-first order
-  std::vector<PrimRef> refs;  ///< references in leaf order; leaves index into this array
-  size_t leaves = 0;          ///< number of leaves
-  size_t max_depth = 0;       ///< depth of the deepest leaf (root at 0)
+/// Reads leaf=N (1..64), bins=N (2..kMaxBins) and trav=X (0..100) from `params`, the defaults
+/// being those of BvhBuildParams; throws Error on bad values. Unused keys are left for the caller.
+BvhBuildParams read_bvh_build_params(const ParamList& params);
 
-  /// Number of real nodes (excluding the padding slot).
-  size_t node_count() const { return nodes.empty() ? 0 : nodes.size() - 1; }
+/// A built binary BVH. nodes[0] is the root and nodes[1] is padding, so that every pair of
+/// children starts at an even index (one cache line); children always follow their parent;
+/// `refs` are in leaf order.
+struct BinaryBvh {
+  BvhNodeArray nodes;  ///< root, padding, then child pairs (depth first when compacted)
+  std::vector<PrimRef, ArrayAllocator<PrimRef>> refs;  ///< leaf order; leaves index into it
+  size_t leaves = 0;                                   ///< number of leaves
+  size_t max_depth = 0;                                ///< depth of the deepest leaf (root at 0)
+
+  /// Number of nodes reachable from the root (inner and leaf).
+  size_t node_count() const { return leaves ? 2 * leaves - 1 : 0; }
 };
 
 /// Deepest level at which SAH splits are used; below it nodes are split at the object median,
@@ -41,6 +47,9 @@ inline constexpr int kBvhStackSize = kMaxSahDepth + 40;
 /// Builds a binary BVH over `refs` (consumed). Leaves hold at most `max_leaf` references and are
 /// made where the SAH says a leaf is cheaper than any split. Subtrees build in parallel; the
 /// result is identical for every thread count. An empty input gives an empty tree.
-BinaryBvh build_binary_bvh(PrimRefs refs, const BvhBuildParams& params);
+/// With `compact` the nodes are dense, in depth-first order; without, they stay in the build's
+/// scratch array (2 slots per reference, unused ones zero), which suits a caller that
+/// only walks the tree once, from the root (e.g. to collapse it into a wide BVH).
+BinaryBvh build_binary_bvh(PrimRefs refs, const BvhBuildParams& params, bool compact = true);
 
 }  // namespace penumbra

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "penumbra/accel/build/array_allocator.h"
 #include "penumbra/core/bounds.h"
 #include "penumbra/geometry/primitive_set.h"
 
@@ -25,9 +26,9 @@ static_assert(sizeof(PrimRef) == 32);
 
 /// Primitive references of a set, with the totals a top-down builder starts from.
 struct PrimRefs {
-  std::vector<PrimRef> refs;  ///< one per primitive with finite bounds, in id order
-  Bounds3 bounds;             ///< union of the boxes
-  Bounds3 centroid_bounds;    ///< bounds of centroid2() over all refs
+  std::vector<PrimRef, ArrayAllocator<PrimRef>> refs;  ///< one per finite primitive, id order
+  Bounds3 bounds;                                      ///< union of the boxes
+  Bounds3 centroid_bounds;                             ///< bounds of centroid2() over all refs
 };
 
 /// References to every primitive of `prims` with a non-empty box (others can never be hit and are

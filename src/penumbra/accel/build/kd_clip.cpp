@@ -1,0 +1,143 @@
+#include "penumbra/accel/build/kd_clip.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace penumbra {
+
+namespace {
+
+/// A convex polygon in double precision. Clipping by a half-space adds at most one vertex, so a
+/// parallelogram clipped by a box and one more plane has at most 4 + 7 vertices.
+struct Polygon {
+  static constexpr int kMax = 16;
+  double v[kMax][3];
+  int n = 0;
+
+  void push(const double* p) {
+    v[n][0] = p[0], v[n][1] = p[1], v[n][2] = p[2];
+    ++n;
+  }
+};
+
+/// The part of `in` on one side of plane x[axis] = c: x[axis] <= c when `keep_below`, >= c
+/// otherwise (Sutherland and Hodgman's one-plane step). Points on the plane are kept; a crossing
+/// edge contributes its intersection, with the axis coordinate set to c exactly.
+void clip_plane(const Polygon& in, Polygon& out, int axis, double c, bool keep_below) {
+  out.n = 0;
+  for (int i = 0; i < in.n; ++i) {
+    const double* p = in.v[i];
+    const double* q = in.v[i + 1 == in.n ? 0 : i + 1];
+    const bool p_in = keep_below ? p[axis] <= c : p[axis] >= c;
+    const bool q_in = keep_below ? q[axis] <= c : q[axis] >= c;
+    if (p_in) out.push(p);
+    if (p_in != q_in) {  // p[axis] != q[axis] here, one being on each side of c
+      const double t = (c - p[axis]) / (q[axis] - p[axis]);
+      double r[3];
+      for (int a = 0; a < 3; ++a) r[a] = p[a] + t * (q[a] - p[a]);
+      r[axis] = c;
+      out.push(r);
+    }
+  }
+}
+
+/// Clips `poly` to `box` in place (six planes).
+void clip_to_box(Polygon& poly, const Bounds3& box) {
+  Polygon tmp;
+  for (int axis = 0; axis < 3 && poly.n > 0; ++axis) {
+    clip_plane(poly, tmp, axis, box.lo[axis], false);
+    clip_plane(tmp, poly, axis, box.hi[axis], true);
+  }
+}
+
+/// The largest float not above `d`.
+float round_down(double d) {
+  const auto f = static_cast<float>(d);
+  return double(f) > d ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+
+/// The smallest float not below `d`.
+float round_up(double d) {
+  const auto f = static_cast<float>(d);
+  return double(f) < d ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+
+/// Bounds of `poly` rounded outward, intersected with `box`.
+Bounds3 polygon_bounds(const Polygon& poly, const Bounds3& box) {
+  if (poly.n == 0) return {};
+  double lo[3], hi[3];
+  for (int a = 0; a < 3; ++a) lo[a] = hi[a] = poly.v[0][a];
+  for (int i = 1; i < poly.n; ++i)
+    for (int a = 0; a < 3; ++a)
+      lo[a] = std::min(lo[a], poly.v[i][a]), hi[a] = std::max(hi[a], poly.v[i][a]);
+  Bounds3 b;
+  b.lo = {round_down(lo[0]), round_down(lo[1]), round_down(lo[2])};
+  b.hi = {round_up(hi[0]), round_up(hi[1]), round_up(hi[2])};
+  return intersect_boxes(b, box);
+}
+
+Polygon make_polygon(std::span<const Vec3> pts) {
+  Polygon poly;
+  for (const Vec3& p : pts) {
+    const double d[3] = {p.x, p.y, p.z};
+    poly.push(d);
+  }
+  return poly;
+}
+
+/// The primitive as a polygon (triangles and parallelograms); false for spheres.
+bool prim_polygon(const PrimitiveSet& prims, uint32_t id, Polygon& poly) {
+  switch (prims.kind(id)) {
+    case PrimKind::kTriangle: {
+      const Vec3* v = prims.triangle(id);
+      poly = make_polygon({v, 3});
+      return true;
+    }
+    case PrimKind::kQuad: {
+      const QuadData& q = prims.quad(id);
+      const Vec3 pts[4] = {q.p, q.p + q.e1, q.p + q.e1 + q.e2, q.p + q.e2};
+      poly = make_polygon(pts);
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
+}  // namespace
+
+Bounds3 clip_polygon_bounds(std::span<const Vec3> poly, const Bounds3& box) {
+  if (poly.empty() || poly.size() > 8 || box.empty()) return {};
+  Polygon p = make_polygon(poly);
+  clip_to_box(p, box);
+  return polygon_bounds(p, box);
+}
+
+Bounds3 clip_prim_bounds(const PrimitiveSet& prims, uint32_t id, const Bounds3& box) {
+  Polygon poly;
+  if (!prim_polygon(prims, id, poly)) return intersect_boxes(prims.prim_bounds(id), box);
+  clip_to_box(poly, box);
+  return polygon_bounds(poly, box);
+}
+
+void split_prim_bounds(const PrimitiveSet& prims, uint32_t id, const Bounds3& box, int axis,
+                       float pos, bool clip, Bounds3& below, Bounds3& above) {
+  Bounds3 below_box = box, above_box = box;
+  below_box.hi[axis] = pos;
+  above_box.lo[axis] = pos;
+  Polygon poly;
+  if (!clip || !prim_polygon(prims, id, poly)) {
+    below = below_box, above = above_box;
+    return;
+  }
+  // The part inside the current box, then each side of the plane.
+  clip_to_box(poly, box);
+  Polygon side;
+  clip_plane(poly, side, axis, pos, true);
+  below = polygon_bounds(side, below_box);
+  clip_plane(poly, side, axis, pos, false);
+  above = polygon_bounds(side, above_box);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,228 @@
+#include "penumbra/accel/kdtree.h"
+
+#include <bit>
+#include <cmath>
+#include <utility>
+
+#include <fmt/format.h>
+
+#include "penumbra/accel/build/kd_sah_builder.h"
+#include "penumbra/accel/build/kd_simple_builder.h"
+#include "penumbra/core/error.h"
+#include "penumbra/core/parallel.h"
+#include "penumbra/core/timer.h"
+#include "penumbra/geometry/float_error.h"
+
+namespace penumbra {
+namespace {
+
+/// Relative widening of the cell intervals the traversal derives: a plane distance
+/// (split - o) * (1 / d) in float is within gamma(3) of the exact one, and comparing two such
+/// distances needs twice that. With intervals widened by this much, a ray that grazes a cell
+/// edge or corner visits the cells on both sides of it instead of possibly neither; the extra
+/// cells are those within a few ulps of a plane crossing, so the cost does not show.
+constexpr float kSlack = 4.0f * gamma(3);
+
+/// max(a, b), or b when a is NaN.
+inline float max_keep(float a, float b) {
+  return a > b ? a : b;
+}
+/// min(a, b), or b when a is NaN.
+inline float min_keep(float a, float b) {
+  return a < b ? a : b;
+}
+
+/// A deferred far child and its interval along the ray.
+struct StackEntry {
+  uint32_t node;
+  float tmin, tmax;
+};
+
+}  // namespace
+
+KdTree::KdTree(const ParamList& params) {
+  std::string criterion = "sah";
+  int given = 0;
+  for (const char* c : {"sah", "median", "gap"}) {
+    if (!params.has(c)) continue;
+    if (!params.get_flag(c)) throw Error(fmt::format("kdtree: criterion '{}' cannot be false", c));
+    criterion = c, ++given;
+  }
+  if (given > 1) throw Error("kdtree: give at most one criterion of sah, median, gap");
+  params_.criterion = criterion == "sah"      ? KdCriterion::kSah
+                      : criterion == "median" ? KdCriterion::kMedian
+                                              : KdCriterion::kGap;
+  params_.traversal_cost = float(params.get_real("ct", 1.0, 0.0, 1000.0));
+  params_.intersect_cost = float(params.get_real("ci", 0.2, 0.01, 1000.0));
+  params_.empty_bonus = float(params.get_real("empty_bonus", 0.1, 0.0, 0.99));
+  params_.max_leaf =
+      int(params.get_int("leaf", params_.criterion == KdCriterion::kSah ? 0 : 8, 0, 1024));
+  params_.max_depth = int(params.get_int("depth", 0, 1, kKdMaxDepth));
+  params_.clip = !params.has("clip") || params.get_flag("clip");
+  params.check_all_used();
+  name_ = "kdtree:" + criterion;
+  for (const char* key : {"ct", "ci", "empty_bonus", "leaf", "depth", "clip"})
+    if (params.has(key)) name_ += fmt::format(",{}={}", key, params.get_string(key, ""));
+}
+
+void KdTree::build(const PrimitiveSet& prims) {
+  const Timer timer;
+  prims_ = &prims;
+  nodes_ = {}, refs_ = {}, packets_ = {};  // releasing the memory of a previous build
+  bounds_ = {};
+  stats_ = {};
+  // One reference per primitive with finite bounds; zeros as +0 so that boxes compare alike.
+  std::vector<KdPrim> refs;
+  refs.reserve(prims.size());
+  for (uint32_t id = 0; id < prims.size(); ++id) {
+    Bounds3 b = prims.prim_bounds(id);
+    if (b.empty()) continue;
+    b.lo = b.lo + Vec3(0.0f), b.hi = b.hi + Vec3(0.0f);
+    bounds_.extend(b);
+    refs.push_back({b, id});
+  }
+  const size_t n = refs.size();
+  if (n > 0) {
+    KdSubtree tree = params_.criterion == KdCriterion::kSah
+                         ? build_kd_sah(prims, std::move(refs), bounds_, params_)
+                         : build_kd_simple(prims, std::move(refs), bounds_, params_);
+    nodes_.assign(tree.nodes.begin(), tree.nodes.end());
+    stats_.leaves = tree.leaves;
+    stats_.max_depth = tree.max_depth;
+    stats_.prim_refs = tree.refs.size();
+    stats_.extra = {{"empty leaves", double(tree.empty_leaves)},
+                    {"refs/prim", double(tree.refs.size()) / double(n)},
+                    {"depth limit", double(kd_depth_limit(params_, n))}};
+    if (prims.all_triangles()) {
+      // Each leaf's references from a multiple of four, for the packets.
+      size_t padded = 0;
+      for (const KdNode& node : nodes_) padded += node.is_leaf() ? (node.count() + 3) / 4 * 4 : 0;
+      if (padded > kKdMaxIndex) throw Error("kdtree: more than 2^30 padded references");
+      refs_.reserve(padded);
+      for (KdNode& node : nodes_) {
+        if (!node.is_leaf()) continue;
+        const auto first = uint32_t(refs_.size());
+        refs_.insert(refs_.end(), tree.refs.begin() + node.first(),
+                     tree.refs.begin() + node.first() + node.count());
+        refs_.resize((refs_.size() + 3) / 4 * 4, kNoPrim);
+        node = KdNode::leaf(first, node.count());
+      }
+      packets_ = make_kd_packets(prims, {refs_.data(), refs_.size()});
+    } else {
+      refs_.assign(tree.refs.begin(), tree.refs.end());
+    }
+  }
+  stats_.nodes = nodes_.size();
+  stats_.bytes = nodes_.capacity() * sizeof(KdNode) + refs_.capacity() * sizeof(uint32_t) +
+                 packets_.capacity() * sizeof(KdTriPacket);
+  stats_.build_ms = timer.elapsed_ms();
+}
+
+template <bool kAnyHit, bool kTriangles>
+bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
+  // Per-ray values in arrays: Vec3's operator[] is a chain of selects, too slow per node.
+  const float o[3] = {pr.ray.o.x, pr.ray.o.y, pr.ray.o.z};
+  const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
+  const uint32_t neg_mask[3] = {0u - uint32_t(pr.neg[0]), 0u - uint32_t(pr.neg[1]),
+                                0u - uint32_t(pr.neg[2])};
+  // The ray's interval inside the root cell (slab test; a NaN from a ray lying in a face plane
+  // keeps the running bound), widened like every other cell interval.
+  float tmin = pr.ray.tmin, tmax = hit.t;
+  for (int a = 0; a < 3; ++a) {
+    const float tn = ((pr.neg[a] ? bounds_.hi[a] : bounds_.lo[a]) - o[a]) * inv[a];
+    const float tf = ((pr.neg[a] ? bounds_.lo[a] : bounds_.hi[a]) - o[a]) * inv[a];
+    tmin = tn > tmin ? tn : tmin;
+    tmax = tf < tmax ? tf : tmax;
+  }
+  if (!(tmin <= tmax)) return false;
+  tmin -= kSlack * std::fabs(tmin);
+  tmax += kSlack * std::fabs(tmax);
+
+  const KdNode* nodes = nodes_.data();
+  const KdPacketRay packet_ray(pr);
+  StackEntry stack[kKdMaxDepth];
+  int sp = 0;
+  uint32_t index = 0;
+  bool found = false;
+  while (true) {
+    // Inner nodes: the child the ray enters first is the one below the plane when the direction
+    // is positive on the axis. Visit the far child too only when the plane lies inside
+    // (tmin, tmax); a ray lying in the plane (0 * inf = NaN) visits both with the whole interval.
+    KdNode n = nodes[index];
+    while (!n.is_leaf()) {
+      const int axis = n.axis();
+      const float tp = (n.split() - o[axis]) * inv[axis];
+      const uint32_t below = index + 1, above = n.above();
+      // The above child is usually far away in the array: start loading it while deciding.
+      __builtin_prefetch(&nodes[above]);
+      const uint32_t first = below ^ ((below ^ above) & neg_mask[axis]);
+      const uint32_t second = below ^ above ^ first;
+      if (tp >= tmax) {
+        index = first;
+      } else if (tp <= tmin) {
+        index = second;
+      } else {
+        const float slack = kSlack * std::fabs(tp);
+        stack[sp++] = {second, max_keep(tp - slack, tmin), tmax};
+        tmax = min_keep(tp + slack, tmax);
+        index = first;
+      }
+      n = nodes[index];
+    }
+    // Leaf: test its primitives; each hit shrinks hit.t.
+    if constexpr (kTriangles) {
+      // Packets of four: a vector filter, then the exact scalar test on the lanes it keeps, in
+      // reference order (so the result is the scalar loop's, bit for bit).
+      const uint32_t first = n.first() / 4, last = first + (n.count() + 3) / 4;
+      for (uint32_t p = first; p < last; ++p) {
+        const uint32_t left = n.count() - 4 * (p - first);
+        unsigned lanes =
+            kd_packet_candidates(packets_[p], packet_ray) & (left >= 4 ? 15u : (1u << left) - 1);
+        for (; lanes != 0; lanes &= lanes - 1) {
+          const int lane = std::countr_zero(lanes);
+          const KdTriPacket& q = packets_[p];
+          float t, u, v;
+          if (!intersect_triangle(pr, kd_packet_vertex(q, 0, lane), kd_packet_vertex(q, 1, lane),
+                                  kd_packet_vertex(q, 2, lane), pr.ray.tmin, hit.t, t, u, v))
+            continue;
+          if constexpr (kAnyHit) return true;
+          hit = {t, u, v, refs_[4 * p + uint32_t(lane)]};
+          found = true;
+        }
+      }
+    } else {
+      for (uint32_t i = n.first(), end = n.first() + n.count(); i < end; ++i) {
+        if (prims_->intersect(refs_[i], pr, hit)) {
+          if constexpr (kAnyHit) return true;
+          found = true;
+        }
+      }
+    }
+    // The next deferred cell that may still hold a closer hit. This is the early exit: a hit at
+    // t <= this leaf's tmax skips every deferred cell, as they start at or after tmax, except
+    // the cells beside a plane the ray lies in, which share this leaf's interval.
+    do {
+      if (sp == 0) return found;
+      --sp;
+    } while (stack[sp].tmin > hit.t);
+    index = stack[sp].node, tmin = stack[sp].tmin, tmax = stack[sp].tmax;
+  }
+}
+
+bool KdTree::intersect(const Ray& ray, Hit& hit) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  return packets_.empty() ? traverse<false, false>(pr, hit) : traverse<false, true>(pr, hit);
+}
+
+bool KdTree::occluded(const Ray& ray) const {
+  if (nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  Hit hit;
+  hit.t = ray.tmax;
+  return packets_.empty() ? traverse<true, false>(pr, hit) : traverse<true, true>(pr, hit);
+}
+
+}  // namespace penumbra

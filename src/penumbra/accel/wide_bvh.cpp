@@ -1,0 +1,266 @@
+#include "penumbra/accel/wide_bvh.h"
+
+#include <bit>
+#include <utility>
+
+#include "penumbra/accel/simd.h"
+#include "penumbra/core/timer.h"
+#include "penumbra/geometry/float_error.h"
+
+namespace penumbra {
+
+namespace {
+
+template <int W>
+using WideNodeArray = std::vector<WideNode<W>, ArrayAllocator<WideNode<W>>>;
+
+/// Collapses the binary tree into W-wide nodes: each wide node takes its binary node's two
+/// children and, while it has fewer than W, opens the child with the largest surface area
+/// (Wald, Benthin, Boulos 2008). Depth first, so a node's children follow it closely.
+template <int W>
+class Collapser {
+ public:
+  Collapser(const BvhNodeArray& bin, WideNodeArray<W>& out) : bin_(bin), out_(out) {}
+
+  /// Number of wide nodes emit(b) will make (to allocate them exactly).
+  size_t count(uint32_t b) const {
+    uint32_t kids[W];
+    const int n = gather(b, kids);
+    size_t total = 1;
+    for (int i = 0; i < n; ++i)
+      if (!bin_[kids[i]].is_leaf()) total += count(kids[i]);
+    return total;
+  }
+
+  /// Emits the wide node for binary inner node `b`; returns its index.
+  uint32_t emit(uint32_t b, size_t depth) {
+    uint32_t kids[W];
+    const int n = gather(b, kids);
+    const auto me = static_cast<uint32_t>(out_.size());
+    out_.push_back(empty_node());
+    for (int i = 0; i < n; ++i) {
+      const BvhNode& k = bin_[kids[i]];
+      uint32_t child = k.index;
+      if (k.is_leaf()) {
+        ++leaves_;
+        max_depth_ = std::max(max_depth_, depth + 1);
+      } else {
+        child = emit(kids[i], depth + 1);
+      }
+      WideNode<W>& node = out_[me];  // emit() may have reallocated
+      for (int r = 0; r < 6; ++r) node.box[r][i] = k.box[r];
+      node.child[i] = child;
+      node.count[i] = k.count;
+    }
+    return me;
+  }
+
+  /// A root node holding a single leaf (when the binary tree is one leaf).
+  void emit_leaf_root(const BvhNode& leaf) {
+    WideNode<W> node = empty_node();
+    for (int r = 0; r < 6; ++r) node.box[r][0] = leaf.box[r];
+    node.child[0] = leaf.index;
+    node.count[0] = leaf.count;
+    out_.push_back(node);
+    leaves_ = 1, max_depth_ = 1;
+  }
+
+  /// Leaves and depth of what was emitted.
+  size_t leaves() const { return leaves_; }
+  size_t max_depth() const { return max_depth_; }
+
+ private:
+  /// The children of wide node `b`: its two binary children, then repeatedly the two children of
+  /// the inner one with the largest surface area in place of it, up to W.
+  int gather(uint32_t b, uint32_t (&kids)[W]) const {
+    kids[0] = bin_[b].index, kids[1] = bin_[b].index + 1;
+    int n = 2;
+    while (n < W) {
+      int open = -1;
+      float largest = -1.0f;
+      for (int i = 0; i < n; ++i) {
+        const BvhNode& k = bin_[kids[i]];
+        const float area = k.bounds().surface_area();
+        if (!k.is_leaf() && area > largest) open = i, largest = area;
+      }
+      if (open < 0) break;
+      const uint32_t first = bin_[kids[open]].index;
+      kids[open] = first, kids[n++] = first + 1;
+    }
+    return n;
+  }
+
+  static WideNode<W> empty_node() {
+    WideNode<W> n;
+    for (int i = 0; i < W; ++i) {
+      for (int a = 0; a < 3; ++a) n.box[2 * a][i] = kInfinity, n.box[2 * a + 1][i] = -kInfinity;
+      n.child[i] = 0, n.count[i] = 0;
+    }
+    return n;
+  }
+
+  const BvhNodeArray& bin_;
+  WideNodeArray<W>& out_;
+  size_t leaves_ = 0, max_depth_ = 0;
+};
+
+/// A deferred child: its (child, count) payload and entry distance.
+struct StackEntry {
+  uint32_t child, count;
+  float t;
+};
+
+}  // namespace
+
+template <int W>
+WideBvh<W>::WideBvh(const ParamList& params) {
+  params_ = read_bvh_build_params(params);
+  params.check_all_used();
+  name_ = params.to_string();
+}
+
+template <int W>
+void WideBvh<W>::build(const PrimitiveSet& prims) {
+  const Timer timer;
+  prims_ = &prims;
+  // The binary tree is only walked once, to collapse it: no need to compact it first.
+  BinaryBvh tree = build_binary_bvh(make_prim_refs(prims), params_, false);
+  nodes_.clear();
+  Collapser<W> collapser(tree.nodes, nodes_);
+  if (!tree.nodes.empty()) {
+    nodes_.reserve(tree.nodes[0].is_leaf() ? 1 : collapser.count(0));
+    if (tree.nodes[0].is_leaf())
+      collapser.emit_leaf_root(tree.nodes[0]);
+    else
+      collapser.emit(0, 0);
+  }
+  leaf_.build(prims, tree.refs);
+  stats_ = {};
+  stats_.nodes = nodes_.size() + collapser.leaves();
+  stats_.leaves = collapser.leaves();
+  stats_.max_depth = collapser.max_depth();
+  stats_.prim_refs = tree.refs.size();
+  stats_.bytes = nodes_.capacity() * sizeof(WideNode<W>) + leaf_.bytes();
+  stats_.build_ms = timer.elapsed_ms();
+}
+
+template <int W>
+template <bool kAnyHit, bool kTriangles>
+bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
+  using F = FloatW<W>;
+  // Per-ray values: origin, 1/d (scaled up for exit distances, Pharr et al., "Physically Based
+  // Rendering", 3rd ed., section 3.9.2) and the near-plane rows chosen by the direction signs.
+  constexpr float kFarScale = 1.0f + 2.0f * gamma(3);
+  const F ox = F::broadcast(pr.ray.o.x), oy = F::broadcast(pr.ray.o.y),
+          oz = F::broadcast(pr.ray.o.z);
+  const F ix = F::broadcast(pr.inv_dir.x), iy = F::broadcast(pr.inv_dir.y),
+          iz = F::broadcast(pr.inv_dir.z);
+  const F fx = F::broadcast(pr.inv_dir.x * kFarScale), fy = F::broadcast(pr.inv_dir.y * kFarScale),
+          fz = F::broadcast(pr.inv_dir.z * kFarScale);
+  const int nx = pr.neg[0], ny = 2 + pr.neg[1], nz = 4 + pr.neg[2];
+  const F t0 = F::broadcast(pr.ray.tmin);
+
+  StackEntry stack[kBvhStackSize * (W - 1) + W];
+  int sp = 0;
+  uint32_t child = 0, count = 0;  // the root, an inner node
+  bool found = false;
+  while (true) {
+    if (count == 0) {
+      // Slab test of all W children at once. max(x, acc) and min(x, acc) keep acc where x is
+      // NaN (0 * inf: the origin on a plane of a zero direction component), so such a term
+      // never rejects a box; the running bounds start from the ray interval and each plane's
+      // distance enters as the first operand.
+      const WideNode<W>& n = nodes_[child];
+      const F t1 = F::broadcast(hit.t);
+      const F near =
+          max((F::load(n.box[nx]) - ox) * ix,
+              max((F::load(n.box[ny]) - oy) * iy, max((F::load(n.box[nz]) - oz) * iz, t0)));
+      const F far =
+          min((F::load(n.box[nx ^ 1]) - ox) * fx,
+              min((F::load(n.box[ny ^ 1]) - oy) * fy, min((F::load(n.box[nz ^ 1]) - oz) * fz, t1)));
+      unsigned mask = mask_le(near, far);
+      if (mask == 0) goto pop;
+      if constexpr (kAnyHit) {
+        // Any hit ends the query, so order does not matter: go to the first child hit, defer
+        // the others (their distance is irrelevant: hit.t never shrinks before the end).
+        const int i0 = std::countr_zero(mask);
+        for (mask &= mask - 1; mask; mask &= mask - 1) {
+          const int i = std::countr_zero(mask);
+          stack[sp++] = {n.child[i], n.count[i], 0.0f};
+        }
+        child = n.child[i0], count = n.count[i0];
+        continue;
+      }
+      alignas(32) float dist[W];
+      near.store(dist);
+      const int i0 = std::countr_zero(mask);
+      mask &= mask - 1;
+      if (mask == 0) {  // one child: go there
+        child = n.child[i0], count = n.count[i0];
+        continue;
+      }
+      const int i1 = std::countr_zero(mask);
+      mask &= mask - 1;
+      if (mask == 0) {  // two: the nearer now, the other later
+        const bool swap = dist[i1] < dist[i0];
+        const int a = swap ? i1 : i0, b = swap ? i0 : i1;
+        stack[sp++] = {n.child[b], n.count[b], dist[b]};
+        child = n.child[a], count = n.count[a];
+        continue;
+      }
+      // Three or more: push all, sort the new entries farthest first, take the nearest.
+      const int base = sp;
+      stack[sp++] = {n.child[i0], n.count[i0], dist[i0]};
+      stack[sp++] = {n.child[i1], n.count[i1], dist[i1]};
+      do {
+        const int i = std::countr_zero(mask);
+        mask &= mask - 1;
+        stack[sp++] = {n.child[i], n.count[i], dist[i]};
+      } while (mask);
+      for (int i = base + 1; i < sp; ++i) {  // insertion sort, descending by distance
+        const StackEntry e = stack[i];
+        int j = i;
+        for (; j > base && stack[j - 1].t < e.t; --j) stack[j] = stack[j - 1];
+        stack[j] = e;
+      }
+      --sp;
+      child = stack[sp].child, count = stack[sp].count;
+      continue;
+    }
+    // Leaf: test its primitives; each hit shrinks hit.t.
+    if (leaf_.intersect<kAnyHit, kTriangles>(*prims_, pr, child, count, hit)) {
+      if constexpr (kAnyHit) return true;
+      found = true;
+    }
+  pop:
+    // The next deferred child that may still hold a closer hit.
+    do {
+      if (sp == 0) return found;
+      --sp;
+    } while (stack[sp].t > hit.t);
+    child = stack[sp].child, count = stack[sp].count;
+  }
+}
+
+template <int W>
+bool WideBvh<W>::intersect(const Ray& ray, Hit& hit) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  return leaf_.triangles() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
+}
+
+template <int W>
+bool WideBvh<W>::occluded(const Ray& ray) const {
+  if (nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  Hit hit;
+  hit.t = ray.tmax;
+  return leaf_.triangles() ? traverse<true, true>(pr, hit) : traverse<true, false>(pr, hit);
+}
+
+template class WideBvh<4>;
+template class WideBvh<8>;
+
+}  // namespace penumbra

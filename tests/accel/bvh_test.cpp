@@ -1,0 +1,226 @@
+/// Tests of the binary BVH and its build pieces: tree invariants, determinism across thread
+/// counts, parameters, and the binned SAH helpers.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "penumbra/accel/build/binned_sah.h"
+#include "penumbra/accel/build/bvh_builder.h"
+#include "penumbra/accel/bvh.h"
+#include "penumbra/accel/registry.h"
+#include "penumbra/core/error.h"
+#include "penumbra/core/parallel.h"
+#include "test_scenes.h"
+
+namespace penumbra::test {
+namespace {
+
+bool contains(const Bounds3& outer, const Bounds3& inner) {
+  return outer.lo.x <= inner.lo.x && outer.lo.y <= inner.lo.y && outer.lo.z <= inner.lo.z &&
+         outer.hi.x >= inner.hi.x && outer.hi.y >= inner.hi.y && outer.hi.z >= inner.hi.z;
+}
+
+/// Walks the tree checking boxes, leaf sizes and depth; returns the leaf slots covered.
+void check_tree(const Bvh& bvh, const PrimitiveSet& prims, int max_leaf) {
+  const auto nodes = bvh.nodes();
+  const auto ids = bvh.leaf_prims();
+  ASSERT_GE(nodes.size(), 2u);
+  std::vector<int> covered(ids.size(), 0);
+  std::vector<std::pair<uint32_t, size_t>> stack{{0, 0}};
+  size_t max_depth = 0, leaves = 0;
+  while (!stack.empty()) {
+    const auto [k, depth] = stack.back();
+    stack.pop_back();
+    const BvhNode& n = nodes[k];
+    max_depth = std::max(max_depth, depth);
+    if (n.is_leaf()) {
+      ++leaves;
+      EXPECT_LE(n.count, uint32_t(max_leaf));
+      for (uint32_t i = n.index; i < n.index + n.count; ++i) {
+        ASSERT_LT(i, ids.size());
+        ++covered[i];
+        EXPECT_TRUE(contains(n.bounds(), prims.prim_bounds(ids[i])));
+      }
+      continue;
+    }
+    ASSERT_EQ(n.index % 2, 0u) << "child pairs start at even indices (one cache line)";
+    ASSERT_LT(n.index + 1, nodes.size());
+    for (uint32_t c : {n.index, n.index + 1}) {
+      EXPECT_TRUE(contains(n.bounds(), nodes[c].bounds()));
+      stack.push_back({c, depth + 1});
+    }
+  }
+  EXPECT_TRUE(std::all_of(covered.begin(), covered.end(), [](int c) { return c == 1; }))
+      << "every leaf slot is referenced by exactly one leaf";
+  const AccelStats st = bvh.stats();
+  EXPECT_EQ(st.leaves, leaves);
+  EXPECT_EQ(st.max_depth, max_depth);
+  EXPECT_EQ(st.nodes, nodes.size() - 1);
+  EXPECT_EQ(st.nodes, 2 * leaves - 1);
+  EXPECT_LE(int(max_depth), kBvhStackSize);
+  // Every primitive with finite bounds appears once.
+  std::vector<uint32_t> sorted(ids.begin(), ids.end());
+  std::sort(sorted.begin(), sorted.end());
+  EXPECT_TRUE(std::adjacent_find(sorted.begin(), sorted.end()) == sorted.end());
+  size_t valid = 0;
+  for (uint32_t i = 0; i < prims.size(); ++i) valid += !prims.prim_bounds(i).empty();
+  EXPECT_EQ(sorted.size(), valid);
+}
+
+TEST(Bvh, TreeInvariantsHoldOnEveryFamily) {
+  for (int leaf : {1, 4, 8}) {
+    for (const TestScene& s : {random_soup(2000, 1), coplanar_grid(10, 10), room_with_boxes(30, 2),
+                               mixed_shapes(3), degenerate_triangles(4), thin_and_large(5)}) {
+      Bvh bvh(ParamList::parse("bvh:leaf=" + std::to_string(leaf)));
+      bvh.build(s.prims);
+      SCOPED_TRACE(s.name + " leaf=" + std::to_string(leaf));
+      check_tree(bvh, s.prims, leaf);
+    }
+  }
+}
+
+TEST(Bvh, SameTreeForEveryThreadCount) {
+  // Large enough for parallel binning and parallel subtrees.
+  const TestScene s = torus(400, 250);
+  std::vector<BvhNode> reference;
+  std::vector<uint32_t> reference_ids;
+  for (int threads : {1, 2, 3, 8}) {
+    const ThreadLimit limit(threads);
+    Bvh bvh(ParamList::parse("bvh"));
+    bvh.build(s.prims);
+    const auto nodes = bvh.nodes();
+    const auto ids = bvh.leaf_prims();
+    if (reference.empty()) {
+      reference.assign(nodes.begin(), nodes.end());
+      reference_ids.assign(ids.begin(), ids.end());
+      continue;
+    }
+    ASSERT_EQ(nodes.size(), reference.size()) << threads << " threads";
+    EXPECT_EQ(std::memcmp(nodes.data(), reference.data(), nodes.size_bytes()), 0)
+        << threads << " threads";
+    EXPECT_TRUE(std::equal(ids.begin(), ids.end(), reference_ids.begin())) << threads << " threads";
+  }
+}
+
+TEST(Bvh, IdenticalPrimitivesStayWithinTheStackDepth) {
+  // Thousands of coincident triangles: no SAH split separates them, so the object median
+  // fallback must keep the depth bounded.
+  PrimitiveSet prims;
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  for (int i = 0; i < 5000; ++i) m.indices.insert(m.indices.end(), {0, 1, 2});
+  prims.add_mesh(m, Transform(), 0);
+  Bvh bvh(ParamList::parse("bvh:leaf=2"));
+  bvh.build(prims);
+  check_tree(bvh, prims, 2);
+  Hit hit;
+  EXPECT_TRUE(bvh.intersect({{0.2f, 0.2f, 1.0f}, {0, 0, -1}}, hit));
+  EXPECT_FLOAT_EQ(hit.t, 1.0f);
+}
+
+TEST(Bvh, ExponentiallySpacedPrimitivesStayWithinTheStackDepth) {
+  // Sizes and positions over 30 octaves invite very unbalanced SAH splits.
+  PrimitiveSet prims;
+  for (int i = 0; i < 3000; ++i) {
+    const float s = std::ldexp(1.0f, -(i % 60));
+    prims.add_sphere({{s, 0, 0}, s * 0.25f}, 0);
+  }
+  Bvh bvh(ParamList::parse("bvh:leaf=1"));
+  bvh.build(prims);
+  check_tree(bvh, prims, 1);
+}
+
+TEST(Bvh, ParametersAreReadAndChecked) {
+  EXPECT_EQ(make_accelerator("bvh")->name(), "bvh");
+  EXPECT_EQ(make_accelerator("bvh:leaf=4,bins=32,trav=0.5")->name(), "bvh:bins=32,leaf=4,trav=0.5");
+  EXPECT_THROW(make_accelerator("bvh:leaf=0"), Error);
+  EXPECT_THROW(make_accelerator("bvh:leaf=65"), Error);
+  EXPECT_THROW(make_accelerator("bvh:bins=1"), Error);
+  EXPECT_THROW(make_accelerator("bvh:bins=x"), Error);
+  EXPECT_THROW(make_accelerator("bvh:leaves=4"), Error);  // misspelt: unknown parameter
+}
+
+TEST(Bvh, ParameterVariantsAgreeWithBrute) {
+  const TestScene s = random_soup(800, 9);
+  const auto rays = mixed_rays(s.prims, 20000, 10);
+  auto brute = make_accelerator("brute");
+  brute->build(s.prims);
+  for (const char* spec :
+       {"bvh:leaf=1", "bvh:leaf=64,trav=100", "bvh:bins=2", "bvh:bins=64,trav=0"}) {
+    auto bvh = make_accelerator(spec);
+    bvh->build(s.prims);
+    size_t differ = 0;
+    for (const Ray& r : rays) {
+      Hit a, b;
+      brute->intersect(r, a);
+      bvh->intersect(r, b);
+      differ += a.valid() != b.valid() || (a.valid() && a.t != b.t);
+      differ += brute->occluded(r) != bvh->occluded(r);
+    }
+    EXPECT_EQ(differ, 0u) << spec;
+  }
+}
+
+TEST(BinnedSah, BinsClampAndIgnoreNaN) {
+  const BinMapping map(Bounds3({0, 0, 0}, {8, 0, 2}), 8);
+  EXPECT_EQ(map.bin(0.0f, 0), 0);
+  EXPECT_EQ(map.bin(8.0f, 0), 7);  // the largest centroid stays in the last bin
+  EXPECT_EQ(map.bin(3.5f, 0), 3);
+  EXPECT_EQ(map.bin(-1.0f, 0), 0);
+  EXPECT_EQ(map.bin(1e30f, 0), 7);
+  EXPECT_EQ(map.bin(std::nanf(""), 0), 0);
+  EXPECT_EQ(map.scale.y, 0.0f);  // no extent: the axis is not used
+}
+
+TEST(BinnedSah, SplitsTwoClustersBetweenThem) {
+  PrimitiveSet prims;
+  for (int i = 0; i < 10; ++i) prims.add_sphere({{float(i) * 0.01f, 0, 0}, 0.001f}, 0);
+  for (int i = 0; i < 10; ++i) prims.add_sphere({{5.0f + float(i) * 0.01f, 0, 0}, 0.001f}, 0);
+  PrimRefs refs = make_prim_refs(prims);
+  ASSERT_EQ(refs.refs.size(), 20u);
+  const BinMapping map(refs.centroid_bounds, 16);
+  const SahSplit split = find_binned_split(refs.refs, map, false);
+  ASSERT_EQ(split.axis, 0);
+  EXPECT_EQ(split.left_count, 10u);
+  EXPECT_EQ(split.right_count, 10u);
+  Bounds3 lc, rc;
+  const size_t mid = partition_refs(refs.refs, map, split, lc, rc);
+  EXPECT_EQ(mid, 10u);
+  for (size_t i = 0; i < refs.refs.size(); ++i) EXPECT_EQ(refs.refs[i].id < 10, i < mid);
+  EXPECT_LE(lc.hi.x, 0.2f);
+  EXPECT_GE(rc.lo.x, 9.9f);  // centroids are stored doubled (lo + hi)
+}
+
+TEST(BinnedSah, ParallelBinningMatchesSequential) {
+  const TestScene s = torus(300, 300);  // 180k references: several parallel chunks
+  PrimRefs refs = make_prim_refs(s.prims);
+  const BinMapping map(refs.centroid_bounds, 32);
+  const SahSplit a = find_binned_split(refs.refs, map, false);
+  const SahSplit b = find_binned_split(refs.refs, map, true);
+  EXPECT_EQ(a.axis, b.axis);
+  EXPECT_EQ(a.pos, b.pos);
+  EXPECT_EQ(a.cost, b.cost);
+  EXPECT_EQ(a.left, b.left);
+  EXPECT_EQ(a.right, b.right);
+  EXPECT_EQ(a.left_count, b.left_count);
+}
+
+TEST(PrimRefs, SkipNonFiniteAndNormaliseNegativeZero) {
+  PrimitiveSet prims;
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {kInfinity, 0, 0}, {0, std::nanf(""), 0}};
+  m.indices = {0, 1, 2, 0, 3, 2, 0, 1, 2, 4, 1, 2};
+  prims.add_mesh(m, Transform(), 0);
+  prims.add_quad({{-0.0f, 0, 0}, {1, 0, 0}, {0, 1, 0}}, 1);
+  const PrimRefs refs = make_prim_refs(prims);
+  ASSERT_EQ(refs.refs.size(), 3u);
+  EXPECT_EQ(refs.refs[0].id, 0u);
+  EXPECT_EQ(refs.refs[1].id, 2u);
+  EXPECT_EQ(refs.refs[2].id, 4u);
+  EXPECT_FALSE(std::signbit(refs.refs[2].lo.x));
+  EXPECT_EQ(refs.bounds, Bounds3({0, 0, 0}, {1, 1, 0}));
+}
+
+}  // namespace
+}  // namespace penumbra::test

@@ -1,0 +1,259 @@
+#include "test_scenes.h"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "penumbra/core/rng.h"
+#include "penumbra/core/transform.h"
+
+namespace penumbra::test {
+
+namespace {
+
+Vec3 random_vec(Pcg32& rng) {
+  return {rng.next_float(), rng.next_float(), rng.next_float()};
+}
+
+Vec3 random_dir(Pcg32& rng) {
+  const float z = 1.0f - 2.0f * rng.next_float();
+  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+  const float phi = 2.0f * std::numbers::pi_v<float> * rng.next_float();
+  return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+/// Appends one triangle as its own mesh (identity transform keeps coordinates exact).
+void add_triangle(PrimitiveSet& prims, Vec3 a, Vec3 b, Vec3 c) {
+  TriangleMesh m;
+  m.positions = {a, b, c};
+  m.indices = {0, 1, 2};
+  prims.add_mesh(m, Transform(), 0);
+}
+
+/// Appends the 12 triangles of an axis-aligned box.
+void add_box(TriangleMesh& m, Vec3 lo, Vec3 hi) {
+  const auto base = static_cast<uint32_t>(m.positions.size());
+  for (int i = 0; i < 8; ++i)
+    m.positions.push_back({i & 1 ? hi.x : lo.x, i & 2 ? hi.y : lo.y, i & 4 ? hi.z : lo.z});
+  const uint32_t faces[6][4] = {{0, 2, 6, 4}, {1, 5, 7, 3}, {0, 4, 5, 1},
+                                {2, 3, 7, 6}, {0, 1, 3, 2}, {4, 6, 7, 5}};
+  for (const auto& f : faces)
+    for (uint32_t k : {f[0], f[1], f[2], f[0], f[2], f[3]}) m.indices.push_back(base + k);
+}
+
+}  // namespace
+
+TestScene random_soup(int n, uint64_t seed) {
+  TestScene s{"random_soup", {}};
+  Pcg32 rng(seed, 1);
+  TriangleMesh m;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 c = random_vec(rng);
+    const float size = 0.01f + 0.2f * rng.next_float() * rng.next_float();
+    for (int k = 0; k < 3; ++k) {
+      m.positions.push_back(c + (random_vec(rng) - Vec3(0.5f)) * size);
+      m.indices.push_back(static_cast<uint32_t>(m.positions.size() - 1));
+    }
+  }
+  s.prims.add_mesh(m, Transform(), 0);
+  return s;
+}
+
+TestScene coplanar_grid(int nx, int ny) {
+  TestScene s{"coplanar_grid", {}};
+  for (int layer = 0; layer < 2; ++layer) {
+    TriangleMesh m;
+    const float off = layer * 0.5f;
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) m.positions.push_back({i + off, j + off, float(layer)});
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const auto v = static_cast<uint32_t>(j * (nx + 1) + i);
+        const uint32_t w = nx + 1;
+        for (uint32_t k : {v, v + 1, v + w + 1, v, v + w + 1, v + w}) m.indices.push_back(k);
+      }
+    s.prims.add_mesh(m, Transform(), layer);
+  }
+  return s;
+}
+
+TestScene room_with_boxes(int boxes, uint64_t seed) {
+  TestScene s{"room_with_boxes", {}};
+  Pcg32 rng(seed, 2);
+  TriangleMesh m;
+  add_box(m, Vec3(0.0f), Vec3(10.0f));
+  for (int i = 0; i < boxes; ++i) {
+    // Integer and half-integer coordinates: many boxes share planes exactly.
+    const Vec3 lo(float(rng.next_bounded(18)) * 0.5f, float(rng.next_bounded(18)) * 0.5f,
+                  float(rng.next_bounded(18)) * 0.5f);
+    const Vec3 size(0.5f * float(1 + rng.next_bounded(3)), 0.5f * float(1 + rng.next_bounded(3)),
+                    0.5f * float(1 + rng.next_bounded(3)));
+    add_box(m, lo, min(lo + size, Vec3(10.0f)));
+  }
+  s.prims.add_mesh(m, Transform(), 0);
+  return s;
+}
+
+TestScene thin_and_large(uint64_t seed) {
+  TestScene s{"thin_and_large", {}};
+  Pcg32 rng(seed, 3);
+  for (int i = 0; i < 300; ++i) {  // needles: length ~1, width 1e-5
+    const Vec3 a = random_vec(rng) * 4.0f, d = random_dir(rng);
+    add_triangle(s.prims, a, a + d, a + d + random_dir(rng) * 1e-5f);
+  }
+  for (int i = 0; i < 300; ++i) {  // tiny
+    const Vec3 a = random_vec(rng) * 4.0f;
+    add_triangle(s.prims, a, a + random_dir(rng) * 1e-4f, a + random_dir(rng) * 1e-4f);
+  }
+  for (int i = 0; i < 30; ++i) {  // huge, crossing everything
+    const Vec3 c = random_vec(rng) * 4.0f;
+    add_triangle(s.prims, c + random_dir(rng) * 1e4f, c + random_dir(rng) * 1e4f,
+                 c + random_dir(rng) * 1e4f);
+  }
+  for (int i = 0; i < 300; ++i) {  // ordinary
+    const Vec3 a = random_vec(rng) * 4.0f;
+    add_triangle(s.prims, a, a + random_dir(rng) * 0.3f, a + random_dir(rng) * 0.3f);
+  }
+  return s;
+}
+
+TestScene mixed_shapes(uint64_t seed) {
+  TestScene s{"mixed_shapes", {}};
+  Pcg32 rng(seed, 4);
+  for (int i = 0; i < 300; ++i)
+    s.prims.add_sphere({random_vec(rng) * 5.0f, 0.02f + 0.3f * rng.next_float()}, 1);
+  for (int i = 0; i < 300; ++i)
+    s.prims.add_quad({random_vec(rng) * 5.0f, random_dir(rng) * 0.5f, random_dir(rng) * 0.5f}, 2);
+  // Axis-aligned quads on shared planes.
+  for (int i = 0; i < 50; ++i)
+    s.prims.add_quad({Vec3(float(rng.next_bounded(5)), float(rng.next_bounded(5)), 2.0f),
+                      Vec3(1, 0, 0), Vec3(0, 1, 0)},
+                     2);
+  for (int i = 0; i < 400; ++i) {
+    const Vec3 a = random_vec(rng) * 5.0f;
+    add_triangle(s.prims, a, a + random_dir(rng) * 0.4f, a + random_dir(rng) * 0.4f);
+  }
+  return s;
+}
+
+TestScene degenerate_triangles(uint64_t seed) {
+  TestScene s{"degenerate_triangles", {}};
+  Pcg32 rng(seed, 5);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 a = random_vec(rng) * 3.0f, b = a + random_dir(rng) * 0.3f;
+    const Vec3 c = a + random_dir(rng) * 0.3f;
+    switch (rng.next_bounded(6)) {
+      case 0:  // repeated vertex
+        add_triangle(s.prims, a, a, c);
+        break;
+      case 1:  // collinear
+        add_triangle(s.prims, a, b, a + (b - a) * 2.0f);
+        break;
+      case 2:  // a NaN vertex
+        add_triangle(s.prims, a, b, Vec3(c.x, nan, c.z));
+        break;
+      case 3:  // an infinite vertex
+        add_triangle(s.prims, a, Vec3(kInfinity, b.y, b.z), c);
+        break;
+      default:
+        add_triangle(s.prims, a, b, c);
+    }
+  }
+  return s;
+}
+
+TestScene torus(int rings, int sides) {
+  TestScene s{"torus", {}};
+  TriangleMesh m;
+  const float R = 1.0f, r = 0.35f, two_pi = 2.0f * std::numbers::pi_v<float>;
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < sides; ++j) {
+      const float u = two_pi * float(i) / float(rings), v = two_pi * float(j) / float(sides);
+      m.positions.push_back({(R + r * std::cos(v)) * std::cos(u),
+                             (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)});
+    }
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < sides; ++j) {
+      const auto at = [&](int a, int b) { return uint32_t((a % rings) * sides + (b % sides)); };
+      for (uint32_t k :
+           {at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j), at(i + 1, j + 1), at(i, j + 1)})
+        m.indices.push_back(k);
+    }
+  s.prims.add_mesh(m, rotate(30.0f, Vec3(1, 2, 3)), 0);  // rotated: no axis-aligned structure
+  return s;
+}
+
+Vec3 point_on(const PrimitiveSet& prims, uint32_t id, float u1, float u2) {
+  switch (prims.kind(id)) {
+    case PrimKind::kTriangle: {
+      const Vec3* p = prims.triangle(id);
+      if (u1 + u2 > 1.0f) u1 = 1.0f - u1, u2 = 1.0f - u2;
+      return p[0] + (p[1] - p[0]) * u1 + (p[2] - p[0]) * u2;
+    }
+    case PrimKind::kSphere: {
+      const SphereData& sp = prims.sphere(id);
+      const float z = 1.0f - 2.0f * u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+      const float phi = 2.0f * std::numbers::pi_v<float> * u2;
+      return sp.center + Vec3(r * std::cos(phi), r * std::sin(phi), z) * sp.radius;
+    }
+    case PrimKind::kQuad: {
+      const QuadData& q = prims.quad(id);
+      return q.p + q.e1 * u1 + q.e2 * u2;
+    }
+  }
+  return {};
+}
+
+std::vector<Ray> mixed_rays(const PrimitiveSet& prims, size_t n, uint64_t seed) {
+  Pcg32 rng(seed, 6);
+  const Bounds3 b = prims.bounds();
+  const Vec3 lo = b.lo - b.diagonal() * 0.1f, ext = b.diagonal() * 1.2f;
+  // Ids of primitives with finite bounds, to start rays on and to take coordinates from.
+  std::vector<uint32_t> valid;
+  for (uint32_t i = 0; i < prims.size(); ++i)
+    if (!prims.prim_bounds(i).empty()) valid.push_back(i);
+  const auto some_point = [&] {
+    return point_on(prims, valid[rng.next_bounded(uint32_t(valid.size()))], rng.next_float(),
+                    rng.next_float());
+  };
+  const auto some_corner = [&] {  // an exact vertex / box corner coordinate source
+    const Bounds3 pb = prims.prim_bounds(valid[rng.next_bounded(uint32_t(valid.size()))]);
+    return rng.next_float() < 0.5f ? pb.lo : pb.hi;
+  };
+  std::vector<Ray> rays(n);
+  for (size_t i = 0; i < n; ++i) {
+    Ray& r = rays[i];
+    switch (i % 5) {
+      case 0:  // random origin and direction
+      case 1:
+        r.o = lo + ext * random_vec(rng);
+        r.d = random_dir(rng);
+        break;
+      case 2:  // starting on a surface
+        r.o = some_point();
+        r.d = random_dir(rng);
+        break;
+      case 3: {  // a zero direction component; the origin on a plane of that axis
+        r.o = lo + ext * random_vec(rng);
+        r.d = random_dir(rng);
+        const int axis = int(rng.next_bounded(3));
+        r.d[axis] = rng.next_float() < 0.5f ? 0.0f : -0.0f;
+        r.o[axis] = some_corner()[axis];
+        break;
+      }
+      default: {  // axis-parallel, through exact vertex coordinates on the other two axes
+        const int axis = int(rng.next_bounded(3));
+        const Vec3 c = some_corner();
+        r.o = lo + ext * random_vec(rng);
+        for (int k = 0; k < 3; ++k)
+          if (k != axis && rng.next_float() < 0.7f) r.o[k] = c[k];
+        r.d = Vec3(0.0f);
+        r.d[axis] = rng.next_float() < 0.5f ? 1.0f : -1.0f;
+      }
+    }
+  }
+  return rays;
+}
+
+}  // namespace penumbra::test
