@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "render_helpers.h"
 
 namespace penumbra {
@@ -29,9 +31,7 @@ double polygon_irradiance(const std::vector<Vec3>& poly, Vec3 p, Vec3 n, double 
 /// tiny field of view looking at the floor point p from the side. The centre pixel then shows
 /// the floor's radiance E / pi.
 std::string scene_json(Vec3 p, float x0, float x1, float z0, float z1, const std::string& extra) {
-  auto v = [](Vec3 a) {
-    return "[" + std::to_string(a.x) + "," + std::to_string(a.y) + "," + std::to_string(a.z) + "]";
-  };
+  auto v = [](Vec3 a) { return fmt::format("[{},{},{}]", a.x, a.y, a.z); };
   return R"({
     "camera": {"type": "pinhole", "position": )" +
          v(p + Vec3{2, 0.5f, 0.3f}) + R"(, "look_at": )" + v(p) + R"(, "vfov": 0.02},
