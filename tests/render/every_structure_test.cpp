@@ -9,55 +9,34 @@
 namespace penumbra {
 namespace {
 
-// The Cornell box with each structure gives an image bit-identical to brute force's: the
-// structures must find the same closest hit for every camera, shadow and secondary ray.
+/// Renders bundled scene `name` at w x h with `spp` samples with every registered structure and
+/// expects images bit-identical to brute force's: every structure must find the same closest hit
+/// for every camera, shadow and secondary ray.
+void expect_identical_images(const std::string& name, int w, int h, int spp) {
+  auto desc = test::bundled_scene(name);
+  desc.render.width = w;
+  desc.render.height = h;
+  desc.render.spp = spp;
+  desc.render.accel = "brute";
+  const RgbImage reference = test::render_desc(desc);
+  for (const AccelInfo& info : accelerator_list()) {
+    desc.render.accel = info.name;
+    EXPECT_TRUE(test::render_desc(desc) == reference) << name << " with " << info.name;
+  }
+}
+
+// Triangles in the Cornell box; spheres and parallelograms with a mirror and glass
+// (whitted.json); a scanned mesh (mesh-bunny.json).
 TEST(EveryStructure, CornellBoxImagesAreBitIdentical) {
-  auto desc = test::bundled_scene("cornell-box.json");
-  desc.render.width = 96;
-  desc.render.height = 96;
-  desc.render.spp = 2;
-  desc.render.accel = "brute";
-  const RgbImage reference = test::render_desc(desc);
-  for (const AccelInfo& info : accelerator_list()) {
-    desc.render.accel = info.name;
-    const RgbImage image = test::render_desc(desc);
-    EXPECT_TRUE(image == reference) << info.name;
-  }
+  expect_identical_images("cornell-box.json", 96, 96, 2);
 }
-
-// The same for spheres and parallelograms with a mirror and glass (whitted.json), and for a
-// scanned mesh (mesh-bunny.json).
 TEST(EveryStructure, WhittedShowcaseImagesAreBitIdentical) {
-  auto desc = test::bundled_scene("whitted.json");
-  desc.render.width = 80;
-  desc.render.height = 60;
-  desc.render.spp = 1;
-  desc.render.accel = "brute";
-  const RgbImage reference = test::render_desc(desc);
-  for (const AccelInfo& info : accelerator_list()) {
-    desc.render.accel = info.name;
-    EXPECT_TRUE(test::render_desc(desc) == reference) << info.name;
-  }
+  expect_identical_images("whitted.json", 80, 60, 1);
 }
-
 TEST(EveryStructure, BunnyImagesAreBitIdentical) {
-  auto desc = test::bundled_scene("mesh-bunny.json");
-  desc.render.width = 80;
-  desc.render.height = 60;
-  desc.render.spp = 1;
-  desc.render.accel = "brute";
-  const RgbImage reference = test::render_desc(desc);
-  for (const AccelInfo& info : accelerator_list()) {
-    desc.render.accel = info.name;
-    EXPECT_TRUE(test::render_desc(desc) == reference) << info.name;
-  }
+  expect_identical_images("mesh-bunny.json", 80, 60, 1);
 }
 
-}  // namespace
-}  // namespace penumbra
-
-namespace penumbra {
-namespace {
 
 // Every bundled scene loads and renders (tiny, one sample) with its own settings, and some pixel
 // receives light.
