@@ -139,6 +139,9 @@ TEST(Bvh, ParametersAreReadAndChecked) {
   EXPECT_THROW(make_accelerator("bvh:bins=1"), Error);
   EXPECT_THROW(make_accelerator("bvh:bins=x"), Error);
   EXPECT_THROW(make_accelerator("bvh:leaves=4"), Error);  // misspelt: unknown parameter
+  EXPECT_THROW(make_accelerator("bvh:width=3"), Error);
+  EXPECT_THROW(make_accelerator("bvh:width=16"), Error);
+  EXPECT_EQ(make_accelerator("bvh:width=2")->name(), "bvh:width=2");
 }
 
 TEST(Bvh, ParameterVariantsAgreeWithBrute) {
@@ -147,7 +150,8 @@ TEST(Bvh, ParameterVariantsAgreeWithBrute) {
   auto brute = make_accelerator("brute");
   brute->build(s.prims);
   for (const char* spec :
-       {"bvh:leaf=1", "bvh:leaf=64,trav=100", "bvh:bins=2", "bvh:bins=64,trav=0"}) {
+       {"bvh:leaf=1", "bvh:leaf=64,trav=100", "bvh:bins=2", "bvh:bins=64,trav=0",
+        "bvh:width=2,leaf=1", "bvh:width=2,bins=2", "bvh:width=4,leaf=64", "bvh2:leaf=3"}) {
     auto bvh = make_accelerator(spec);
     bvh->build(s.prims);
     size_t differ = 0;

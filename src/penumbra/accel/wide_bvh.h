@@ -1,5 +1,5 @@
 #pragma once
-/// `bvh4` and `bvh8`: wide BVHs with 4 or 8 children per node, made by collapsing the binary
+/// `bvh` (width 8, the default) and `bvh4`: wide BVHs with 4 or 8 children per node, made by collapsing the binary
 /// binned-SAH BVH (Dammertz, Hanika, Keller 2008, "Shallow Bounding Volume Hierarchies for Fast
 /// SIMD Ray Tracing of Incoherent Rays"; Wald, Benthin, Boulos 2008, "Getting Rid of Packets").
 /// A node holds its children's boxes in structure-of-arrays form, so one SIMD slab test covers
