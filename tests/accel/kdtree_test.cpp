@@ -10,7 +10,6 @@
 
 #include "penumbra/accel/build/kd_clip.h"
 #include "penumbra/accel/build/kd_events.h"
-#include "penumbra/accel/build/kd_packets.h"
 #include "penumbra/accel/build/kd_simple_builder.h"
 #include "penumbra/accel/kdtree.h"
 #include "penumbra/accel/registry.h"
@@ -204,43 +203,6 @@ TEST(KdTree, StraddlingPrimitivesSplitIntoTheirParts) {
   EXPECT_TRUE(clip_prim_bounds(prims, 0, Bounds3({3, 3, -1}, {4, 4, 1})).empty());
 }
 
-TEST(KdTree, PacketFilterNeverDropsAScalarHit) {
-  // Random triangles, and triangles sharing edges and vertices with rays aimed at those edges
-  // and vertices (where the scalar test's rounding decides), at small and large coordinates.
-  Pcg32 rng(11, 2);
-  size_t hits = 0;
-  for (int it = 0; it < 40000; ++it) {
-    const float scale = it % 3 == 0 ? 1e-3f : (it % 3 == 1 ? 1.0f : 1e4f);
-    const auto rv = [&] {
-      return Vec3(rng.next_float(), rng.next_float(), rng.next_float()) * scale;
-    };
-    Vec3 tri[4][3];
-    const Vec3 shared0 = rv(), shared1 = rv();
-    for (int lane = 0; lane < 4; ++lane) {
-      tri[lane][0] = shared0, tri[lane][1] = shared1, tri[lane][2] = rv();
-      if (it % 2) tri[lane][0] = rv();
-    }
-    KdTriPacket p;
-    for (int lane = 0; lane < 4; ++lane)
-      for (int k = 0; k < 3; ++k)
-        for (int a = 0; a < 3; ++a) p.v[k][a][lane] = tri[lane][k][a];
-    const float w = rng.next_float();
-    const Vec3 target = it % 4 == 0 ? shared0 : shared0 * w + shared1 * (1.0f - w);
-    const Vec3 o = target + (rv() - Vec3(0.5f * scale)) * 2.0f;
-    const PreparedRay pr(Ray{o, target - o});
-    const unsigned kept = kd_packet_candidates(p, KdPacketRay(pr));
-    for (int lane = 0; lane < 4; ++lane) {
-      float t, u, v;
-      if (!intersect_triangle(pr, tri[lane][0], tri[lane][1], tri[lane][2], 0.0f, kInfinity, t, u,
-                              v))
-        continue;
-      ++hits;
-      EXPECT_TRUE(kept >> lane & 1u) << "iteration " << it << " lane " << lane;
-    }
-  }
-  EXPECT_GT(hits, 20000u);
-}
-
 TEST(KdTree, EventKeysSortLikeTheSweepNeeds) {
   const float xs[] = {-1e30f, -2.5f, -0.0f, 0.0f, 1e-40f, 1.0f, 3.5f, 1e30f};
   for (size_t i = 0; i + 1 < std::size(xs); ++i) {
@@ -421,7 +383,7 @@ TEST(KdTree, TreeInvariantsHold) {
       EXPECT_LE(int(max_depth), kd_depth_limit(kd.params(), s.prims.size()));
       const size_t padded = kd.refs().size();
       EXPECT_EQ(st.bytes, kd.nodes().size() * sizeof(KdNode) + padded * sizeof(uint32_t) +
-                              (s.prims.all_triangles() ? padded / 4 * sizeof(KdTriPacket) : 0));
+                              (s.prims.all_triangles() ? padded / 4 * sizeof(TriangleBlock) : 0));
     }
   }
 }

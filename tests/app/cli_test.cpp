@@ -15,6 +15,8 @@
 #include <sstream>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 namespace penumbra {
 namespace {
 
@@ -129,19 +131,33 @@ TEST_F(CliTest, BadInputFailsWithAMessageAndNoOutput) {
 }
 
 // accel-bench on a scene and on a mesh writes one JSON row per structure (Embree's too when it
-// was found at configure time) with the documented keys.
+// was found at configure time) with the documented keys, and one run per thread count.
 TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   // Brute force traces the 1024 x 1024 primary rays too: only over the 38 Cornell triangles.
   for (const std::string input : {scene("cornell-box.json") + " --accel bvh,brute",
-                                  scene("meshes/bunny.obj") + " --accel bvh"}) {
+                                  scene("meshes/bunny.obj") + " --accel bvh,bvh:sweep"}) {
     ASSERT_EQ(run("accel-bench " + input + " --threads 1 --rays 2000 --json " + path("bench.json")),
               0)
         << err_;
-    const std::string json = slurp(path("bench.json"));
-    for (const char* key : {"\"accel\"", "\"threads\"", "\"build_ms\"", "\"bytes\"", "\"nodes\"",
-                            "\"primary_mrays\"", "\"incoherent_mrays\"", "\"occlusion_mrays\""})
-      EXPECT_NE(json.find(key), std::string::npos) << key;
-    EXPECT_NE(json.find("\"bvh\""), std::string::npos);
+    const auto rows = nlohmann::json::parse(slurp(path("bench.json")));
+    ASSERT_TRUE(rows.is_array());
+    size_t structures = 0;
+    for (const auto& row : rows) {
+      for (const char* key : {"accel", "mesh", "triangles", "build_ms", "build_threads", "bytes"})
+        EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
+      if (row["accel"] == "embree") continue;
+      ++structures;
+      for (const char* key : {"nodes", "depth", "refs_per_prim"})
+        EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
+      EXPECT_GE(row["refs_per_prim"].get<double>(), 1.0);  // a BVH or brute: each triangle once
+      EXPECT_EQ(row["build_threads"], 1);
+      ASSERT_EQ(row["runs"].size(), 1u) << row.dump();
+      const auto& run = row["runs"][0];
+      EXPECT_EQ(run["threads"], 1);
+      for (const char* key : {"primary_mrays", "incoherent_mrays", "occlusion_mrays"})
+        EXPECT_GT(run[key].get<double>(), 0.0) << key;
+    }
+    EXPECT_EQ(structures, 2u);
     EXPECT_NE(out_.find("Mrays/s"), std::string::npos) << out_;
   }
   EXPECT_EQ(run("accel-bench " + scene("cornell-box.json") + " --accel brute --rays 100 --json " +
@@ -150,6 +166,36 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   EXPECT_NE(slurp(path("brute.json")).find("\"brute\""), std::string::npos);
   EXPECT_NE(run("accel-bench " + scene("cornell-box.json") + " --accel nope"), 0);
   EXPECT_NE(err_.find("valid:"), std::string::npos) << err_;
+}
+
+// With several thread counts accel-bench prints one table with a group of throughput columns per
+// count (sorted, duplicates merged), builds on the largest, and writes one run per count.
+TEST_F(CliTest, AccelBenchMeasuresEveryThreadCountInOneTable) {
+  ASSERT_EQ(run("accel-bench " + scene("cornell-box.json") +
+                " --accel bvh,bvh:median --threads 2,1,2 --rays 500 --json " + path("t.json")),
+            0)
+      << err_;
+  for (const char* column :
+       {"build ms", "MiB", "nodes", "depth", "refs/prim", "primary", "incoher.", "occlus.",
+        "vs embree", "1 thread, Mrays/s", "2 threads, Mrays/s", "build ms at 2 threads"})
+    EXPECT_NE(out_.find(column), std::string::npos) << column << "\n" << out_;
+  EXPECT_LT(out_.find("1 thread, Mrays/s"), out_.find("2 threads, Mrays/s"));
+  EXPECT_NE(out_.find("bvh:median "), std::string::npos) << out_;
+  const auto rows = nlohmann::json::parse(slurp(path("t.json")));
+  for (const auto& row : rows) {
+    EXPECT_EQ(row["build_threads"], 2) << row.dump();
+    ASSERT_EQ(row["runs"].size(), 2u) << row.dump();
+    EXPECT_EQ(row["runs"][0]["threads"], 1);
+    EXPECT_EQ(row["runs"][1]["threads"], 2);
+  }
+  // The default is 1 and all cores; bad counts are errors naming the item.
+  ASSERT_EQ(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --rays 100"), 0) << err_;
+  EXPECT_NE(out_.find("1 thread, Mrays/s"), std::string::npos) << out_;
+  for (const char* bad : {"0", "1,x", "1,", "-2", "5000"}) {
+    EXPECT_NE(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --threads " + bad), 0)
+        << bad;
+    EXPECT_NE(err_.find("is not a thread count"), std::string::npos) << bad << ": " << err_;
+  }
 }
 
 // Ctrl-C stops the render, keeps the finished tiles in a complete image file and exits with 130.

@@ -68,7 +68,7 @@ KdTree::KdTree(const ParamList& params) {
 void KdTree::build(const PrimitiveSet& prims) {
   const Timer timer;
   prims_ = &prims;
-  nodes_ = {}, refs_ = {}, packets_ = {};  // releasing the memory of a previous build
+  nodes_ = {}, refs_ = {}, blocks_ = {};  // releasing the memory of a previous build
   bounds_ = {};
   stats_ = {};
   // One reference per primitive with finite bounds; zeros as +0 so that boxes compare alike.
@@ -94,7 +94,7 @@ void KdTree::build(const PrimitiveSet& prims) {
                     {"refs/prim", double(tree.refs.size()) / double(n)},
                     {"depth limit", double(kd_depth_limit(params_, n))}};
     if (prims.all_triangles()) {
-      // Each leaf's references from a multiple of four, for the packets.
+      // Each leaf's references from a multiple of four, for the blocks.
       size_t padded = 0;
       for (const KdNode& node : nodes_) padded += node.is_leaf() ? (node.count() + 3) / 4 * 4 : 0;
       if (padded > kKdMaxIndex) throw Error("kdtree: more than 2^30 padded references");
@@ -107,14 +107,14 @@ void KdTree::build(const PrimitiveSet& prims) {
         refs_.resize((refs_.size() + 3) / 4 * 4, kNoPrim);
         node = KdNode::leaf(first, node.count());
       }
-      packets_ = make_kd_packets(prims, {refs_.data(), refs_.size()});
+      blocks_.assign(prims, {refs_.data(), refs_.size()});
     } else {
       refs_.assign(tree.refs.begin(), tree.refs.end());
     }
   }
   stats_.nodes = nodes_.size();
-  stats_.bytes = nodes_.capacity() * sizeof(KdNode) + refs_.capacity() * sizeof(uint32_t) +
-                 packets_.capacity() * sizeof(KdTriPacket);
+  stats_.bytes =
+      nodes_.capacity() * sizeof(KdNode) + refs_.capacity() * sizeof(uint32_t) + blocks_.bytes();
   stats_.build_ms = timer.elapsed_ms();
 }
 
@@ -139,7 +139,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
   tmax += kSlack * std::fabs(tmax);
 
   const KdNode* nodes = nodes_.data();
-  const KdPacketRay packet_ray(pr);
+  const BlockRay block_ray(pr);
   StackEntry stack[kKdMaxDepth];
   int sp = 0;
   uint32_t index = 0;
@@ -171,24 +171,10 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
     if constexpr (kTriangles) {
-      // Packets of four: a vector filter, then the exact scalar test on the lanes it keeps, in
-      // reference order (so the result is the scalar loop's, bit for bit).
-      const uint32_t first = n.first() / 4, last = first + (n.count() + 3) / 4;
-      for (uint32_t p = first; p < last; ++p) {
-        const uint32_t left = n.count() - 4 * (p - first);
-        unsigned lanes =
-            kd_packet_candidates(packets_[p], packet_ray) & (left >= 4 ? 15u : (1u << left) - 1);
-        for (; lanes != 0; lanes &= lanes - 1) {
-          const int lane = std::countr_zero(lanes);
-          const KdTriPacket& q = packets_[p];
-          float t, u, v;
-          if (!intersect_triangle(pr, kd_packet_vertex(q, 0, lane), kd_packet_vertex(q, 1, lane),
-                                  kd_packet_vertex(q, 2, lane), pr.ray.tmin, hit.t, t, u, v))
-            continue;
-          if constexpr (kAnyHit) return true;
-          hit = {t, u, v, refs_[4 * p + uint32_t(lane)]};
-          found = true;
-        }
+      // Blocks of four, tested four at a time (bit for bit the scalar test in reference order).
+      if (blocks_.intersect<kAnyHit>(block_ray, n.first() / 4, n.count(), hit)) {
+        if constexpr (kAnyHit) return true;
+        found = true;
       }
     } else {
       for (uint32_t i = n.first(), end = n.first() + n.count(); i < end; ++i) {
@@ -214,7 +200,7 @@ bool KdTree::intersect(const Ray& ray, Hit& hit) const {
   hit.t = ray.tmax;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
-  return packets_.empty() ? traverse<false, false>(pr, hit) : traverse<false, true>(pr, hit);
+  return blocks_.size() == 0 ? traverse<false, false>(pr, hit) : traverse<false, true>(pr, hit);
 }
 
 bool KdTree::occluded(const Ray& ray) const {
@@ -222,7 +208,7 @@ bool KdTree::occluded(const Ray& ray) const {
   const PreparedRay pr(ray);
   Hit hit;
   hit.t = ray.tmax;
-  return packets_.empty() ? traverse<true, false>(pr, hit) : traverse<true, true>(pr, hit);
+  return blocks_.size() == 0 ? traverse<true, false>(pr, hit) : traverse<true, true>(pr, hit);
 }
 
 }  // namespace penumbra

@@ -27,14 +27,14 @@
 #include "penumbra/accel/accelerator.h"
 #include "penumbra/accel/build/array_allocator.h"
 #include "penumbra/accel/build/kd_node.h"
-#include "penumbra/accel/build/kd_packets.h"
+#include "penumbra/accel/triangle_blocks.h"
 #include "penumbra/core/params.h"
 
 namespace penumbra {
 
 /// Kd-tree over any primitive set. When the set holds only triangles, each leaf's references
-/// start at a multiple of four (padded with kNoPrim) and the triangles are copied into packets of
-/// four in reference order, tested four at a time.
+/// start at a multiple of four (padded with kNoPrim) and the triangles are copied into blocks of
+/// four in reference order (triangle_blocks.h), tested four at a time.
 class KdTree final : public Accelerator {
  public:
   /// Reads the criterion and parameters from `params` (see the file comment); throws Error on
@@ -66,7 +66,7 @@ class KdTree final : public Accelerator {
   Bounds3 bounds_;
   std::vector<KdNode, ArrayAllocator<KdNode>> nodes_;
   std::vector<uint32_t, ArrayAllocator<uint32_t>> refs_;
-  std::vector<KdTriPacket, ArrayAllocator<KdTriPacket>> packets_;  ///< refs_ / 4, or empty
+  TriangleBlocks blocks_;  ///< refs_ / 4 blocks when every primitive is a triangle, or none
   AccelStats stats_;
 };
 

@@ -47,7 +47,11 @@ const std::vector<Entry>& entries() {
       {{"brute", "brute force: every primitive for every ray (the reference)"}, create<BruteForce>},
       {{"bvh",
         "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
-        "trav=2"},
+        "trav=2, build=binned|median|sweep"},
+       create_bvh},
+      // Variants listed (name:params) so that `all` and the differential tests cover them.
+      {{"bvh:median", "bvh built by object-median splits (build=median)"}, create_bvh},
+      {{"bvh:sweep", "bvh built by full-sweep SAH over all object partitions (build=sweep)"},
        create_bvh},
       {{"bvh2", "binary BVH (bvh:width=2), 32-byte nodes, nearer child first"}, create<Bvh>},
       {{"bsp", "3D BSP by auto-partition (order=random|first|fewest-cuts, seed=1, depth=256)"},
@@ -81,7 +85,9 @@ std::unique_ptr<Accelerator> make_accelerator(std::string_view spec) {
   for (const auto& e : entries())
     if (e.info.name == params.name()) return e.make(params);
   std::string names;
-  for (const auto& e : entries()) names += (names.empty() ? "" : ", ") + e.info.name;
+  for (const auto& e : entries())
+    if (e.info.name.find(':') == std::string::npos)  // not the listed variants
+      names += (names.empty() ? "" : ", ") + e.info.name;
   throw Error(fmt::format("unknown acceleration structure '{}' (valid: {})", params.name(), names));
 }
 

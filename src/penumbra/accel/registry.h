@@ -11,7 +11,7 @@ namespace penumbra {
 
 /// One registered structure.
 struct AccelInfo {
-  std::string name;         ///< what `--accel` takes before the colon
+  std::string name;         ///< what `--accel` takes before the colon (or a NAME:variant)
   std::string description;  ///< one line for --help and docs
 };
 

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "penumbra/accel/simd.h"
+#include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/geometry/float_error.h"
 
@@ -124,7 +125,10 @@ void WideBvh<W>::build(const PrimitiveSet& prims) {
   const Timer timer;
   prims_ = &prims;
   // The binary tree is only walked once, to collapse it: no need to compact it first.
-  BinaryBvh tree = build_binary_bvh(make_prim_refs(prims), params_, false);
+  // Triangle leaves are tested four at a time (TriangleBlocks): let the SAH count blocks.
+  BvhBuildParams params = params_;
+  if (prims.all_triangles()) params.block_shift = 2;
+  BinaryBvh tree = build_binary_bvh(make_prim_refs(prims), params, false);
   nodes_.clear();
   Collapser<W> collapser(tree.nodes, nodes_);
   if (!tree.nodes.empty()) {
@@ -134,14 +138,46 @@ void WideBvh<W>::build(const PrimitiveSet& prims) {
     else
       collapser.emit(0, 0);
   }
-  leaf_.build(prims, tree.refs);
+  leaf_ = LeafPrims{};
+  blocks_.resize(0);
+  if (prims.all_triangles())
+    make_blocks(prims, tree.refs);
+  else
+    leaf_.build(prims, tree.refs);
   stats_ = {};
   stats_.nodes = nodes_.size() + collapser.leaves();
   stats_.leaves = collapser.leaves();
   stats_.max_depth = collapser.max_depth();
   stats_.prim_refs = tree.refs.size();
-  stats_.bytes = nodes_.capacity() * sizeof(WideNode<W>) + leaf_.bytes();
+  stats_.bytes = nodes_.capacity() * sizeof(WideNode<W>) + leaf_.bytes() + blocks_.bytes();
   stats_.build_ms = timer.elapsed_ms();
+}
+
+template <int W>
+void WideBvh<W>::make_blocks(const PrimitiveSet& prims, std::span<const PrimRef> refs) {
+  // Leaf children in node order (depth first), each given its first block: the blocks of
+  // nearby leaves lie close in memory, as their references did.
+  std::vector<uint32_t> leaf_lanes;  // node * W + lane
+  for (size_t n = 0; n < nodes_.size(); ++n)
+    for (int i = 0; i < W; ++i)
+      if (nodes_[n].count[i] > 0) leaf_lanes.push_back(static_cast<uint32_t>(n * W + i));
+  std::vector<uint32_t> first(leaf_lanes.size() + 1, 0);
+  for (size_t l = 0; l < leaf_lanes.size(); ++l) {
+    const uint32_t count = nodes_[leaf_lanes[l] / W].count[leaf_lanes[l] % W];
+    first[l + 1] = first[l] + TriangleBlocks::blocks_for(count);
+  }
+  blocks_.resize(first.back());
+  parallel_for_range(
+      leaf_lanes.size(),
+      [&](size_t begin, size_t end) {
+        for (size_t l = begin; l < end; ++l) {
+          WideNode<W>& node = nodes_[leaf_lanes[l] / W];
+          const int lane = leaf_lanes[l] % W;
+          blocks_.fill(first[l], prims, refs.subspan(node.child[lane], node.count[lane]));
+          node.child[lane] = first[l];
+        }
+      },
+      1024);
 }
 
 template <int W>
@@ -159,6 +195,7 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
           fz = F::broadcast(pr.inv_dir.z * kFarScale);
   const int nx = pr.neg[0], ny = 2 + pr.neg[1], nz = 4 + pr.neg[2];
   const F t0 = F::broadcast(pr.ray.tmin);
+  const BlockRay block_ray(pr);
 
   StackEntry stack[kBvhStackSize * (W - 1) + W];
   int sp = 0;
@@ -171,6 +208,10 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
       // never rejects a box; the running bounds start from the ray interval and each plane's
       // distance enters as the first operand.
       const WideNode<W>& n = nodes_[child];
+      // The children's indices lie on another cache line than the boxes; which one is needed
+      // depends on the box test, so fetch the line now rather than after it (two misses in
+      // parallel instead of one after the other).
+      __builtin_prefetch(n.child);
       const F t1 = F::broadcast(hit.t);
       const F near =
           max((F::load(n.box[nx]) - ox) * ix,
@@ -228,7 +269,12 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
       continue;
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
-    if (leaf_.intersect<kAnyHit, kTriangles>(*prims_, pr, child, count, hit)) {
+    bool leaf_hit;
+    if constexpr (kTriangles)
+      leaf_hit = blocks_.intersect<kAnyHit>(block_ray, child, count, hit);
+    else
+      leaf_hit = leaf_.intersect<kAnyHit, false>(*prims_, pr, child, count, hit);
+    if (leaf_hit) {
       if constexpr (kAnyHit) return true;
       found = true;
     }
@@ -248,7 +294,7 @@ bool WideBvh<W>::intersect(const Ray& ray, Hit& hit) const {
   hit.t = ray.tmax;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
-  return leaf_.triangles() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
+  return blocks_.size() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
 }
 
 template <int W>
@@ -257,7 +303,7 @@ bool WideBvh<W>::occluded(const Ray& ray) const {
   const PreparedRay pr(ray);
   Hit hit;
   hit.t = ray.tmax;
-  return leaf_.triangles() ? traverse<true, true>(pr, hit) : traverse<true, false>(pr, hit);
+  return blocks_.size() ? traverse<true, true>(pr, hit) : traverse<true, false>(pr, hit);
 }
 
 template class WideBvh<4>;

@@ -1,10 +1,10 @@
 #pragma once
-/// `bvh` (width 8, the default) and `bvh4`: wide BVHs with 4 or 8 children per node, made by collapsing the binary
-/// binned-SAH BVH (Dammertz, Hanika, Keller 2008, "Shallow Bounding Volume Hierarchies for Fast
-/// SIMD Ray Tracing of Incoherent Rays"; Wald, Benthin, Boulos 2008, "Getting Rid of Packets").
-/// A node holds its children's boxes in structure-of-arrays form, so one SIMD slab test covers
-/// all of them (SSE for 4, AVX for 8); a ray reaches a leaf in half (a third) of the binary
-/// tree's dependent node fetches. Children are visited nearest first.
+/// `bvh` (width 8, the default) and `bvh4`: wide BVHs with 4 or 8 children per node, made by
+/// collapsing the binary binned-SAH BVH (Dammertz, Hanika, Keller 2008, "Shallow Bounding Volume
+/// Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays"; Wald, Benthin, Boulos 2008, "Getting
+/// Rid of Packets"). A node holds its children's boxes in structure-of-arrays form, so one SIMD
+/// slab test covers all of them (SSE for 4, AVX for 8); a ray reaches a leaf in half (a third) of
+/// the binary tree's dependent node fetches. Children are visited nearest first.
 ///
 /// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2).
 #include <string>
@@ -14,6 +14,7 @@
 #include "penumbra/accel/build/array_allocator.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/leaf_prims.h"
+#include "penumbra/accel/triangle_blocks.h"
 #include "penumbra/core/params.h"
 
 namespace penumbra {
@@ -47,11 +48,15 @@ class WideBvh final : public Accelerator {
   template <bool kAnyHit, bool kTriangles>
   bool traverse(const PreparedRay& pr, Hit& hit) const;
 
+  /// Moves the leaves' triangles into blocks and points the leaf children at them.
+  void make_blocks(const PrimitiveSet& prims, std::span<const PrimRef> refs);
+
   std::string name_;
   BvhBuildParams params_;
   const PrimitiveSet* prims_ = nullptr;
   std::vector<WideNode<W>, ArrayAllocator<WideNode<W>>> nodes_;
-  LeafPrims leaf_;
+  LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle
+  TriangleBlocks blocks_;  ///< the leaves' triangles, when every primitive is one
   AccelStats stats_;
 };
 

@@ -1,17 +1,19 @@
 #include "penumbra/app/accel_bench.h"
 
+#include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "penumbra/accel/registry.h"
+#include "penumbra/app/accel_bench_table.h"
 #include "penumbra/app/bench_rays.h"
 #include "penumbra/app/embree_scene.h"
 #include "penumbra/core/error.h"
@@ -30,15 +32,6 @@ constexpr size_t kBruteLimit = 100'000;
 constexpr int kImageSide = 1024;
 /// Seed of the incoherent ray set.
 constexpr uint64_t kRaySeed = 0x5eed'acce'1be7ull;
-
-/// One row of the result table.
-struct Row {
-  std::string accel;
-  double build_ms = 0;
-  size_t bytes = 0, nodes = 0, depth = 0;
-  double primary = 0, incoherent = 0, occlusion = 0;  ///< Mrays/s
-  std::optional<size_t> mismatches, ties;             ///< closest hits against Embree
-};
 
 /// The ray sets, with Embree's incoherent closest hits when it ran.
 struct RaySets {
@@ -87,18 +80,50 @@ bool differs(const Hit& a, const Hit& b) {
   return std::fabs(a.t - b.t) > 1e-4f * std::max(std::fabs(a.t), std::fabs(b.t));
 }
 
-/// Runs the three ray sets through `intersect` and `occluded`, comparing with the reference.
+/// Sorted distinct thread counts of "1,all", "4", "1,2,8": `all` is `all_threads`.
+std::vector<int> parse_thread_counts(const std::string& text, int all_threads) {
+  std::vector<int> counts;
+  size_t start = 0;
+  while (start <= text.size()) {
+    const size_t comma = std::min(text.find(',', start), text.size());
+    const std::string item = text.substr(start, comma - start);
+    int n = 0;
+    const auto [ptr, ec] = std::from_chars(item.data(), item.data() + item.size(), n);
+    if (item == "all")
+      n = all_threads;
+    else if (ec != std::errc() || ptr != item.data() + item.size() || n < 1 || n > 4096)
+      throw Error(fmt::format(
+          "--threads '{}': '{}' is not a thread count (1 to 4096, or 'all' for all cores)", text,
+          item));
+    counts.push_back(n);
+    start = comma + 1;
+  }
+  std::sort(counts.begin(), counts.end());
+  counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
+  return counts;
+}
+
+/// Runs the three ray sets through `intersect` and `occluded` at each of `threads`, and compares
+/// the incoherent closest hits (the same at every thread count) with the reference if there is one.
 template <class Intersect, class Occluded>
-void measure(Row& row, const RaySets& rays, const Intersect& intersect, const Occluded& occluded,
-             std::vector<Hit>* keep) {
-  row.primary = throughput(rays.primary, [&](const Ray& r, size_t) {
-    Hit h;
-    intersect(r, h);
-  });
+void measure(BenchRow& row, const RaySets& rays, const std::vector<int>& threads,
+             const Intersect& intersect, const Occluded& occluded, std::vector<Hit>* keep) {
   std::vector<Hit> hits(rays.incoherent.size());
-  row.incoherent =
-      throughput(rays.incoherent, [&](const Ray& r, size_t i) { intersect(r, hits[i]); });
-  row.occlusion = throughput(rays.incoherent, [&](const Ray& r, size_t) { occluded(r); });
+  for (const int t : threads) {
+    const ThreadLimit limit(t);
+    BenchRates rates;
+    rates.threads = t;
+    rates.primary = throughput(rays.primary, [&](const Ray& r, size_t) {
+      Hit h;
+      intersect(r, h);
+    });
+    // Fresh hits each run: a closest hit query starts from an empty record.
+    std::fill(hits.begin(), hits.end(), Hit{});
+    rates.incoherent =
+        throughput(rays.incoherent, [&](const Ray& r, size_t i) { intersect(r, hits[i]); });
+    rates.occlusion = throughput(rays.incoherent, [&](const Ray& r, size_t) { occluded(r); });
+    row.rates.push_back(rates);
+  }
   if (!rays.reference.empty()) {
     size_t mismatches = 0, ties = 0;
     for (size_t i = 0; i < hits.size(); ++i) {
@@ -110,47 +135,6 @@ void measure(Row& row, const RaySets& rays, const Intersect& intersect, const Oc
     row.mismatches = mismatches, row.ties = ties;
   }
   if (keep) *keep = std::move(hits);
-}
-
-void print_table(const std::vector<Row>& rows) {
-  fmt::print("{:<22} {:>10} {:>10} {:>10} {:>6} {:>10} {:>10} {:>10} {:>12}\n", "accel", "build ms",
-             "MiB", "nodes", "depth", "primary", "incoher.", "occlusion", "vs embree");
-  for (const Row& r : rows) {
-    const std::string cmp =
-        r.mismatches ? fmt::format("{} ({} ties)", *r.mismatches, *r.ties) : "-";
-    // Embree reports neither nodes nor depth.
-    const bool shape = r.accel != "embree";
-    fmt::print("{:<22} {:>10.1f} {:>10.1f} {:>10} {:>6} {:>10.2f} {:>10.2f} {:>10.2f} {:>12}\n",
-               r.accel, r.build_ms, double(r.bytes) / (1 << 20),
-               shape ? std::to_string(r.nodes) : "-", shape ? std::to_string(r.depth) : "-",
-               r.primary, r.incoherent, r.occlusion, cmp);
-  }
-  fmt::print(
-      "(Mrays/s; 'vs embree': incoherent closest hits differing from Embree's, hit vs miss "
-      "or t beyond 1e-4 relative; ties: same t, another triangle)\n");
-}
-
-void write_json(const std::string& path, const std::vector<Row>& rows, const std::string& mesh,
-                size_t triangles, int threads) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const Row& r : rows) {
-    nlohmann::json o = {{"accel", r.accel},
-                        {"threads", threads},
-                        {"build_ms", r.build_ms},
-                        {"bytes", r.bytes},
-                        {"nodes", r.nodes},
-                        {"depth", r.depth},
-                        {"primary_mrays", r.primary},
-                        {"incoherent_mrays", r.incoherent},
-                        {"occlusion_mrays", r.occlusion},
-                        {"triangles", triangles},
-                        {"mesh", mesh}};
-    if (r.mismatches) o["embree_mismatches"] = *r.mismatches;
-    out.push_back(o);
-  }
-  std::ofstream f(path);
-  f << out.dump(2) << "\n";
-  if (!f) throw Error(fmt::format("{}: cannot write", path));
 }
 
 }  // namespace
@@ -165,8 +149,9 @@ void add_accel_bench_command(CLI::App& app) {
   cmd->add_option("--accel", args->accels,
                   "Structures NAME[:params],... or 'all' (default; brute is left out of 'all' "
                   "above 100k triangles)");
-  cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
+  cmd->add_option("--threads", args->threads,
+                  "Thread counts to trace with, comma-separated, 'all' = all cores (default "
+                  "'1,all': one column group each); structures build with the largest");
   cmd->add_option("--json", args->json, "Also write the results to this JSON file");
   cmd->add_option("--rays", args->rays, "Incoherent (and occlusion) rays (default 1000000)")
       ->check(CLI::Range(size_t(1), size_t(1) << 30));
@@ -205,8 +190,10 @@ TriangleMesh scene_triangles(const SceneDesc& desc) {
 }
 
 void run_accel_bench(const AccelBenchArgs& args) {
-  const ThreadLimit limit(args.threads);
-  const int threads = thread_count();
+  const std::vector<int> threads = parse_thread_counts(args.threads, thread_count());
+  const int build_threads = threads.back();
+  // Loading, ray generation and builds run on the largest thread count.
+  std::optional<ThreadLimit> limit(std::in_place, build_threads);
   const Timer load_timer;
   const bool is_scene =
       args.input.size() >= 5 && args.input.substr(args.input.size() - 5) == ".json";
@@ -214,8 +201,9 @@ void run_accel_bench(const AccelBenchArgs& args) {
       is_scene ? scene_triangles(load_scene(args.input)) : read_mesh(args.input);
   PrimitiveSet prims;
   prims.add_mesh(mesh, Transform(), 0);
-  fmt::print("{}: {} triangles, loaded in {:.0f} ms; {} thread(s)\n", args.input,
-             mesh.triangle_count(), load_timer.elapsed_ms(), threads);
+  fmt::print("{}: {} triangles, loaded in {:.0f} ms; builds on {} thread(s), rays traced on {}\n",
+             args.input, mesh.triangle_count(), load_timer.elapsed_ms(), build_threads,
+             fmt::join(threads, " and "));
 
   // Structures to run: explicit names, or every registered one.
   std::vector<std::string> specs;
@@ -241,32 +229,45 @@ void run_accel_bench(const AccelBenchArgs& args) {
       "occlusion queries with tmax = infinity\n",
       rays.primary.size(), kImageSide, kImageSide, rays.incoherent.size(), rays.incoherent.size());
 
-  std::vector<Row> rows;
+  // Each measurement sets its own thread limit: an enclosing one would cap it.
+  limit.reset();
+  std::vector<BenchRow> rows;
+  const double triangles = double(mesh.triangle_count());
   if (have_embree()) {
-    const EmbreeScene embree(mesh, args.threads);
-    Row row;
-    row.accel = "embree", row.build_ms = embree.build_ms(), row.bytes = embree.bytes();
+    BenchRow row;
+    row.accel = "embree";
+    std::optional<EmbreeScene> embree;
+    {
+      const ThreadLimit build_limit(build_threads);
+      embree.emplace(mesh, build_threads);
+    }
+    row.build_ms = embree->build_ms(), row.bytes = embree->bytes();
     measure(
-        row, rays, [&](const Ray& r, Hit& h) { return embree.intersect(r, h); },
-        [&](const Ray& r) { return embree.occluded(r); }, &rays.reference);
+        row, rays, threads, [&](const Ray& r, Hit& h) { return embree->intersect(r, h); },
+        [&](const Ray& r) { return embree->occluded(r); }, &rays.reference);
     rows.push_back(row);
   }
   for (auto& accel : accels) {
-    Row row;
+    BenchRow row;
     row.accel = accel->name();
-    const Timer timer;
-    accel->build(prims);
-    row.build_ms = timer.elapsed_ms();
+    {
+      const ThreadLimit build_limit(build_threads);
+      const Timer timer;
+      accel->build(prims);
+      row.build_ms = timer.elapsed_ms();
+    }
     const AccelStats st = accel->stats();
     row.bytes = st.bytes, row.nodes = st.nodes, row.depth = st.max_depth;
+    row.refs_per_prim = double(st.prim_refs) / triangles;
     measure(
-        row, rays, [&](const Ray& r, Hit& h) { return accel->intersect(r, h); },
+        row, rays, threads, [&](const Ray& r, Hit& h) { return accel->intersect(r, h); },
         [&](const Ray& r) { return accel->occluded(r); }, nullptr);
     rows.push_back(row);
     accel.reset();  // free its memory before the next build
   }
-  print_table(rows);
-  if (!args.json.empty()) write_json(args.json, rows, args.input, mesh.triangle_count(), threads);
+  print_bench_table(rows, build_threads);
+  if (!args.json.empty())
+    write_bench_json(args.json, rows, args.input, mesh.triangle_count(), build_threads);
 }
 
 }  // namespace penumbra::app

@@ -12,17 +12,18 @@ namespace penumbra::app {
 
 /// The options of one benchmark run.
 struct AccelBenchArgs {
-  std::string input;           ///< mesh (.obj, .ply) or scene (.json, not yet supported)
-  std::string accels = "all";  ///< comma-separated NAME[:params], or "all"
-  int threads = 0;             ///< worker threads; 0 = all cores
-  std::string json;            ///< when set, results are also written here as a JSON array
-  size_t rays = 1'000'000;     ///< incoherent (and occlusion) rays
+  std::string input;              ///< mesh (.obj, .ply) or scene (.json, not yet supported)
+  std::string accels = "all";     ///< comma-separated NAME[:params], or "all"
+  std::string threads = "1,all";  ///< thread counts to trace with: N,... or "all" (all cores)
+  std::string json;               ///< when set, results are also written here as a JSON array
+  size_t rays = 1'000'000;        ///< incoherent (and occlusion) rays
 };
 
 /// Registers the `accel-bench` subcommand on `app`.
 void add_accel_bench_command(CLI::App& app);
 
-/// Runs the benchmark, printing a table to stdout; throws Error on bad input.
+/// Runs the benchmark, printing a table to stdout; throws Error on bad input. Structures build
+/// once, with the largest thread count, and trace each ray set at every thread count.
 void run_accel_bench(const AccelBenchArgs& args);
 
 }  // namespace penumbra::app

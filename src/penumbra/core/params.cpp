@@ -85,7 +85,11 @@ void ParamList::check_all_used() const {
 std::string ParamList::to_string() const {
   std::string s = name_;
   char sep = ':';
-  for (const auto& [key, value] : values_) s += fmt::format("{}{}={}", sep, key, value), sep = ',';
+  for (const auto& [key, value] : values_) {
+    // A bare flag stays bare ("kdtree:sah", not "kdtree:sah=true"); parse() reads it back.
+    s += value == "true" ? fmt::format("{}{}", sep, key) : fmt::format("{}{}={}", sep, key, value);
+    sep = ',';
+  }
   return s;
 }
 

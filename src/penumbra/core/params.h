@@ -26,7 +26,7 @@ class ParamList {
   bool get_flag(const std::string& key) const;
   /// Throws Error naming any parameter no getter asked for.
   void check_all_used() const;
-  /// The text form "name:k=v,...", keys sorted.
+  /// The text form "name:k=v,...", keys sorted; flags given as `true` are written bare.
   std::string to_string() const;
 
  private:

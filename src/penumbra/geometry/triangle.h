@@ -21,14 +21,17 @@ inline bool intersect_triangle(const PreparedRay& pr, Vec3 a, Vec3 b, Vec3 c, fl
   const float ax = A[pr.kx] - pr.sx * A[pr.kz], ay = A[pr.ky] - pr.sy * A[pr.kz];
   const float bx = B[pr.kx] - pr.sx * B[pr.kz], by = B[pr.ky] - pr.sy * B[pr.kz];
   const float cx = C[pr.kx] - pr.sx * C[pr.kz], cy = C[pr.ky] - pr.sy * C[pr.kz];
-  // Scaled barycentrics as 2D edge functions, always in double (the paper falls back to double
-  // only when one is zero). Products of floats are exact in double, so each edge function is
-  // rounded once and is exactly the negative of the same edge seen from the neighbouring
-  // triangle, even when the compiler fuses a * b - c * d into an FMA; in float, such fusion
-  // breaks that symmetry and lets rays slip through shared edges.
-  const auto U = float(double(cx) * by - double(cy) * bx);
-  const auto V = float(double(ax) * cy - double(ay) * cx);
-  const auto W = float(double(bx) * ay - double(by) * ax);
+  // Scaled barycentrics as 2D edge functions. In float, fl(fl(p q) - fl(r s)) is exactly the
+  // negative of the same edge seen from the neighbouring triangle (the project builds with
+  // -ffp-contract=off: an FMA would round the two products differently and break that
+  // symmetry). Where one is zero the sign is undecided, and all three are recomputed in double
+  // (products of floats are exact there), as the paper prescribes.
+  float U = cx * by - cy * bx, V = ax * cy - ay * cx, W = bx * ay - by * ax;
+  if (U == 0.0f || V == 0.0f || W == 0.0f) [[unlikely]] {
+    U = float(double(cx) * by - double(cy) * bx);
+    V = float(double(ax) * cy - double(ay) * cx);
+    W = float(double(bx) * ay - double(by) * ax);
+  }
   // Outside when the edge functions have mixed signs (one test on their min and max, fewer
   // branches for incoherent rays to mispredict).
   if (std::min(U, std::min(V, W)) < 0.0f && std::max(U, std::max(V, W)) > 0.0f) return false;

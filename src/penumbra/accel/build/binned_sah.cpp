@@ -4,6 +4,8 @@
 #include <utility>
 #include <vector>
 
+#include "penumbra/accel/build/box_accumulator.h"
+#include "penumbra/accel/build/bvh_split.h"
 #include "penumbra/core/parallel.h"
 
 #if defined(__SSE2__)
@@ -18,32 +20,6 @@ namespace {
 constexpr size_t kBinChunk = 32768;
 /// Nodes with at least this many references bin into two alternating bin sets.
 constexpr size_t kSpareMin = 256;
-
-/// A growing box of 4-float vectors with a branch-free surface area (0 while empty).
-struct BoxAccumulator {
-#if defined(__SSE2__)
-  __m128 lo = _mm_set1_ps(kInfinity), hi = _mm_set1_ps(-kInfinity);
-  void add(const float* l, const float* h) {
-    lo = _mm_min_ps(lo, _mm_load_ps(l));
-    hi = _mm_max_ps(hi, _mm_load_ps(h));
-  }
-  float area() const {
-    alignas(16) float d[4];
-    _mm_store_ps(d, _mm_max_ps(_mm_sub_ps(hi, lo), _mm_setzero_ps()));
-    return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
-  }
-#else
-  float lo[3] = {kInfinity, kInfinity, kInfinity}, hi[3] = {-kInfinity, -kInfinity, -kInfinity};
-  void add(const float* l, const float* h) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], l[k]), hi[k] = std::max(hi[k], h[k]);
-  }
-  float area() const {
-    float d[3];
-    for (int k = 0; k < 3; ++k) d[k] = std::max(hi[k] - lo[k], 0.0f);
-    return 2.0f * (d[0] * d[1] + d[1] * d[2] + d[2] * d[0]);
-  }
-#endif
-};
 
 /// Bin boxes (as 4-float lo and hi vectors, the 4th lane unused) and counts of the three axes.
 struct BinSet {
@@ -161,7 +137,8 @@ BinMapping::BinMapping(const Bounds3& centroid_bounds, int bins_) : bins(bins_) 
   }
 }
 
-SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map, bool parallel) {
+SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map, bool parallel,
+                           int block_shift) {
   BinSet set(map.bins);
   bin_refs(refs, map, parallel, set);
   const int nb = map.bins;
@@ -185,7 +162,8 @@ SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map,
       acc.add(set.lo[a][i - 1], set.hi[a][i - 1]);
       n += set.count[a][i - 1];
       if (n == 0 || right_count[i] == 0) continue;
-      const float cost = acc.area() * float(n) + right_area[i] * float(right_count[i]);
+      const float cost = acc.area() * sah_tests(n, block_shift) +
+                         right_area[i] * sah_tests(right_count[i], block_shift);
       if (best.axis < 0 || cost < best.cost) best.axis = a, best.pos = i, best.cost = cost;
     }
   }

@@ -39,10 +39,12 @@ struct SahSplit {
   uint32_t right_count = 0;  ///< references on the right
 };
 
-/// Finds the binned split of `refs` minimising area(left) N(left) + area(right) N(right).
+/// Finds the binned split of `refs` minimising area(left) T(left) + area(right) T(right), T the
+/// SAH's test count of a side (sah_tests with `block_shift`: N itself by default).
 /// Bins large sets in parallel chunks of fixed size when `parallel` is set; bin boxes and counts
 /// combine exactly (min, max, integer sums), so the result is the same for every thread count.
-SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map, bool parallel);
+SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map, bool parallel,
+                           int block_shift = 0);
 
 /// Moves the references of bins [0, split.pos) on split.axis to the front and returns how many
 /// there are; also returns the centroid bounds (of lo + hi) of the two sides. Deterministic.

@@ -1,21 +1,56 @@
 #include "penumbra/accel/build/bvh_builder.h"
 
 #include <algorithm>
+#include <string>
 
+#include <fmt/format.h>
 #include <oneapi/tbb/parallel_invoke.h>
+
+#include "penumbra/accel/build/bvh_median.h"
+#include "penumbra/accel/build/bvh_split.h"
+#include "penumbra/accel/build/bvh_sweep.h"
+#include "penumbra/core/error.h"
 
 namespace penumbra {
 
 namespace {
 
+/// The binned SAH strategy: Wald 2007, with the object median where no bin boundary separates
+/// the references or the tree is too deep.
+struct BinnedSplitter {
+  const BvhBuildParams& p;
+  PrimRef* refs;
+
+  NodeSplit operator()(uint32_t b, uint32_t e, const Bounds3& box, const Bounds3& centroids,
+                       int depth) const {
+    const uint32_t n = e - b;
+    SahSplit split;
+    // Fewer bins for small nodes: the sweep costs O(bins) whatever the node size.
+    BinMapping map(centroids, std::min(p.bins, std::max(4, int(n))));
+    if (depth < kMaxSahDepth) split = find_binned_split({refs + b, n}, map, n >= p.parallel_min, p.block_shift);
+    if (n <= uint32_t(p.max_leaf) &&
+        (split.axis < 0 || sah_prefers_leaf(n, box, split.cost, p.traversal_cost, p.block_shift)))
+      return NodeSplit::make_leaf();
+    if (split.axis < 0) return object_median_split({refs + b, n}, b, centroids);
+    NodeSplit s;
+    s.mid = b + uint32_t(
+                    partition_refs({refs + b, n}, map, split, s.left_centroids, s.right_centroids));
+    s.left = split.left, s.right = split.right;
+    return s;
+  }
+};
+
 /// Recursive builder into a scratch node array in which the subtree over references [b, e) owns
 /// the 2 (e - b) - 2 slots after its own children: disjoint regions make the node indices (and so
 /// the tree) independent of the order in which parallel tasks run. The root sits at 0 and slot 1
 /// is padding, so every child pair starts at an even index. A final pass may compact it.
+/// `Split` decides each node (a NodeSplit from its range, box, centroid bounds and depth) and
+/// reorders the references; it is called concurrently on disjoint ranges.
+template <class Split>
 class Builder {
  public:
-  Builder(const BvhBuildParams& p, PrimRef* refs, BvhNode* scratch)
-      : p_(p), refs_(refs), nodes_(scratch) {}
+  Builder(const BvhBuildParams& p, Split& split, BvhNode* scratch)
+      : p_(p), split_(split), nodes_(scratch) {}
 
   /// Leaves and depth of a finished subtree.
   struct Result {
@@ -29,38 +64,20 @@ class Builder {
     BvhNode& out = nodes_[node];
     out.set_bounds(box);
     if (n == 1) return make_leaf(out, b, n, depth);
-
-    // Binned SAH split, unless the tree is already too deep.
-    SahSplit split;
-    // Fewer bins for small nodes: the sweep costs O(bins) whatever the node size.
-    BinMapping map(centroids, std::min(p_.bins, std::max(4, int(n))));
-    if (depth < kMaxSahDepth) split = find_binned_split({refs_ + b, n}, map, n >= p_.parallel_min);
-    if (split.axis >= 0 && n <= uint32_t(p_.max_leaf)) {
-      // Leaf cost n against traversal + SAH-weighted children, both scaled by the node's area.
-      const float area = box.surface_area();
-      if (float(n) * area <= p_.traversal_cost * area + split.cost)
-        return make_leaf(out, b, n, depth);
-    }
-    if (split.axis < 0 && n <= uint32_t(p_.max_leaf)) return make_leaf(out, b, n, depth);
-
-    // Partition, by the SAH split or else at the object median.
-    uint32_t mid;
-    Bounds3 lbox, rbox, lcen, rcen;
-    if (split.axis >= 0) {
-      mid = b + uint32_t(partition_refs({refs_ + b, n}, map, split, lcen, rcen));
-      lbox = split.left, rbox = split.right;
-    } else {
-      mid = median_split(b, e, centroids);
-      child_bounds(b, mid, lbox, lcen);
-      child_bounds(mid, e, rbox, rcen);
-    }
+    const NodeSplit s = split_(b, e, box, centroids, depth);
+    if (s.leaf) return make_leaf(out, b, n, depth);
 
     // Children at (free, free + 1); their descendants in disjoint regions after them.
     out.index = free, out.count = 0;
+    const uint32_t mid = s.mid;
     const uint32_t left_free = free + 2, right_free = left_free + 2 * (mid - b) - 2;
     Result l, r;
-    auto build_left = [&] { l = build(free, b, mid, left_free, lbox, lcen, depth + 1); };
-    auto build_right = [&] { r = build(free + 1, mid, e, right_free, rbox, rcen, depth + 1); };
+    auto build_left = [&] {
+      l = build(free, b, mid, left_free, s.left, s.left_centroids, depth + 1);
+    };
+    auto build_right = [&] {
+      r = build(free + 1, mid, e, right_free, s.right, s.right_centroids, depth + 1);
+    };
     if (n >= p_.parallel_min) {
       tbb::parallel_invoke(build_left, build_right);
     } else {
@@ -76,28 +93,21 @@ class Builder {
     return {1, size_t(depth)};
   }
 
-  /// Splits [b, e) in half along the widest centroid axis (ties broken by id, so deterministic);
-  /// when all centroids coincide, just in half.
-  uint32_t median_split(uint32_t b, uint32_t e, const Bounds3& centroids) {
-    const uint32_t mid = b + (e - b) / 2;
-    const int a = centroids.max_extent_axis();
-    if (!(centroids.diagonal()[a] > 0.0f)) return mid;
-    std::nth_element(refs_ + b, refs_ + mid, refs_ + e, [a](const PrimRef& x, const PrimRef& y) {
-      const float cx = x.centroid2()[a], cy = y.centroid2()[a];
-      return cx < cy || (cx == cy && x.id < y.id);
-    });
-    return mid;
-  }
-
-  void child_bounds(uint32_t b, uint32_t e, Bounds3& box, Bounds3& centroids) const {
-    for (uint32_t i = b; i < e; ++i)
-      box.extend(refs_[i].bounds()), centroids.extend(refs_[i].centroid2());
-  }
-
   const BvhBuildParams& p_;
-  PrimRef* refs_;
+  Split& split_;
   BvhNode* nodes_;
 };
+
+/// Builds the tree over `n` references with `split` into `scratch`, from the root's box and
+/// centroid bounds; sets the leaf count and depth of `out`.
+template <class Split>
+void build_tree(const BvhBuildParams& p, Split& split, uint32_t n, const PrimRefs& in,
+                BvhNode* scratch, BinaryBvh& out) {
+  Builder<Split> builder(p, split, scratch);
+  const auto r = builder.build(0, 0, n, 2, in.bounds, in.centroid_bounds, 0);
+  out.leaves = r.leaves;
+  out.max_depth = r.depth;
+}
 
 /// Copies the scratch tree into a dense array: root, padding, then child pairs in depth-first
 /// order (a pair's subtree follows it closely, which suits near-first traversal).
@@ -125,7 +135,32 @@ BvhNodeArray compact(const BvhNode* scratch, size_t leaves) {
 
 BvhBuildParams read_bvh_build_params(const ParamList& params) {
   BvhBuildParams p;
+  // build=METHOD, or the bare method name as a shorthand (as kdtree:sah).
+  std::string method = params.get_string("build", "");
+  for (const char* m : {"binned", "median", "sweep"}) {
+    if (!params.has(m)) continue;
+    if (!params.get_flag(m))
+      throw Error(fmt::format("{}: build method '{}' cannot be false", params.name(), m));
+    if (!method.empty() && method != m)
+      throw Error(
+          fmt::format("{}: give one build method (binned, median or sweep), got '{}' and '{}'",
+                      params.name(), method, m));
+    method = m;
+  }
+  if (method == "median")
+    p.method = BvhSplitMethod::kMedian;
+  else if (method == "sweep")
+    p.method = BvhSplitMethod::kSweep;
+  else if (!method.empty() && method != "binned")
+    throw Error(fmt::format("{}: parameter 'build' must be binned, median or sweep, got '{}'",
+                            params.name(), method));
   p.max_leaf = int(params.get_int("leaf", p.max_leaf, 1, 64));
+  // Reject what the method would ignore rather than silently measuring something else.
+  if (p.method != BvhSplitMethod::kBinned && params.has("bins"))
+    throw Error(fmt::format("{}: parameter 'bins' applies only to build=binned", params.name()));
+  if (p.method == BvhSplitMethod::kMedian && params.has("trav"))
+    throw Error(
+        fmt::format("{}: parameter 'trav' does not apply to build=median (no SAH)", params.name()));
   p.bins = int(params.get_int("bins", p.bins, 2, kMaxBins));
   p.traversal_cost = float(params.get_real("trav", p.traversal_cost, 0.0, 100.0));
   return p;
@@ -139,11 +174,25 @@ BinaryBvh build_binary_bvh(PrimRefs in, const BvhBuildParams& params, bool compa
   // Scratch nodes: the build writes every slot it later reads.
   BvhNodeArray scratch(2 * size_t(n));
   scratch[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
-  Builder builder(params, out.refs.data(), scratch.data());
-  const Builder::Result r = builder.build(0, 0, n, 2, in.bounds, in.centroid_bounds, 0);
-  out.leaves = r.leaves;
-  out.max_depth = r.depth;
-  out.nodes = compact_nodes ? compact(scratch.data(), r.leaves) : std::move(scratch);
+  PrimRef* refs = out.refs.data();
+  switch (params.method) {
+    case BvhSplitMethod::kBinned: {
+      BinnedSplitter split{params, refs};
+      build_tree(params, split, n, in, scratch.data(), out);
+      break;
+    }
+    case BvhSplitMethod::kMedian: {
+      MedianSplitter split{params, refs};
+      build_tree(params, split, n, in, scratch.data(), out);
+      break;
+    }
+    case BvhSplitMethod::kSweep: {
+      SweepSahSplitter split({refs, n}, params);
+      build_tree(params, split, n, in, scratch.data(), out);
+      break;
+    }
+  }
+  out.nodes = compact_nodes ? compact(scratch.data(), out.leaves) : std::move(scratch);
   return out;
 }
 

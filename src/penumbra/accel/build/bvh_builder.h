@@ -1,7 +1,8 @@
 #pragma once
 /// Top-down construction of a binary BVH over primitive references with binned SAH splits
-/// (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"). Shared by every
-/// structure that starts from a binary BVH.
+/// (Wald 2007, "On fast Construction of SAH-based Bounding Volume Hierarchies"), full-sweep SAH
+/// splits (bvh_sweep.h) or object-median splits (bvh_median.h). Shared by every structure that
+/// starts from a binary BVH.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -13,16 +14,27 @@
 
 namespace penumbra {
 
+/// How the build chooses the split of a node.
+enum class BvhSplitMethod {
+  kBinned,  ///< binned SAH: `bins` candidate planes per axis (the default)
+  kMedian,  ///< object median along the widest centroid axis, no SAH
+  kSweep,   ///< exact SAH over every object partition in centroid order
+};
+
 /// Settings of the binary BVH build.
 struct BvhBuildParams {
-  int bins = 16;                ///< SAH bins per axis, in [2, kMaxBins]
-  int max_leaf = 8;             ///< most references in one leaf
+  BvhSplitMethod method = BvhSplitMethod::kBinned;  ///< split strategy
+  int bins = 16;                                    ///< SAH bins per axis, in [2, kMaxBins]
+  int max_leaf = 8;                                 ///< most references in one leaf
   float traversal_cost = 2.0f;  ///< cost of an inner node relative to one primitive test
+  /// Leaves are tested 2^block_shift primitives at a time (SIMD blocks); the SAH counts blocks.
+  int block_shift = 0;
   size_t parallel_min = 4096;   ///< nodes with more references build their children as tasks
 };
 
-/// Reads leaf=N (1..64), bins=N (2..kMaxBins) and trav=X (0..100) from `params`, the defaults
-/// being those of BvhBuildParams; throws Error on bad values. Unused keys are left for the caller.
+/// Reads build=binned|median|sweep (or the bare word), leaf=N (1..64), bins=N (2..kMaxBins, binned
+/// only) and trav=X (0..100, not for median) from `params`, the defaults being those of
+/// BvhBuildParams; throws Error on bad values. Unused keys are left for the caller.
 BvhBuildParams read_bvh_build_params(const ParamList& params);
 
 /// A built binary BVH. nodes[0] is the root and nodes[1] is padding, so that every pair of
@@ -45,7 +57,8 @@ inline constexpr int kMaxSahDepth = 48;
 inline constexpr int kBvhStackSize = kMaxSahDepth + 40;
 
 /// Builds a binary BVH over `refs` (consumed). Leaves hold at most `max_leaf` references and are
-/// made where the SAH says a leaf is cheaper than any split. Subtrees build in parallel; the
+/// made where the SAH says a leaf is cheaper than any split (median: as soon as they fit).
+/// Subtrees build in parallel; the
 /// result is identical for every thread count. An empty input gives an empty tree.
 /// With `compact` the nodes are dense, in depth-first order; without, they stay in the build's
 /// scratch array (2 slots per reference, unused ones zero), which suits a caller that

@@ -1,0 +1,40 @@
+#pragma once
+/// The results of `penumbra accel-bench`: one row per structure, with ray throughput at each
+/// thread count, printed as one table and written as JSON.
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace penumbra::app {
+
+/// Ray throughput at one thread count, in millions of rays per second.
+struct BenchRates {
+  int threads = 0;        ///< worker threads while tracing
+  double primary = 0;     ///< closest hits of the pinhole camera's rays
+  double incoherent = 0;  ///< closest hits of random rays
+  double occlusion = 0;   ///< any hit of the same random rays
+};
+
+/// The measurements of one structure (or of Embree).
+struct BenchRow {
+  std::string accel;                    ///< name with parameters, or "embree"
+  double build_ms = 0;                  ///< wall time of the build
+  size_t bytes = 0;                     ///< memory of the structure
+  std::optional<size_t> nodes, depth;   ///< unknown for Embree
+  std::optional<double> refs_per_prim;  ///< leaf references per primitive; unknown for Embree
+  std::vector<BenchRates> rates;        ///< one per thread count, as the table's groups
+  std::optional<size_t> mismatches;     ///< incoherent closest hits differing from Embree's
+  std::optional<size_t> ties;           ///< of the agreeing ones, another triangle at the same t
+};
+
+/// Prints the table: build ms (at `build_threads`), MiB, nodes, depth, refs/prim, then primary,
+/// incoherent and occlusion Mrays/s for each thread count, then the comparison with Embree.
+void print_bench_table(const std::vector<BenchRow>& rows, int build_threads);
+
+/// Writes `rows` to `path` as a JSON array of objects (keys in docs/accel.md); throws Error when
+/// the file cannot be written.
+void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
+                      const std::string& mesh, size_t triangles, int build_threads);
+
+}  // namespace penumbra::app
