@@ -70,6 +70,11 @@ Vec3 SceneParams::require_vec3(const std::string& key) const {
   return json_vec3(*v, place_of(*this, key));
 }
 
+Vec2 SceneParams::get_vec2(const std::string& key, Vec2 fallback) const {
+  const nlohmann::json* v = lookup(key);
+  return v ? json_vec2(*v, place_of(*this, key)) : fallback;
+}
+
 Rgb SceneParams::get_rgb(const std::string& key, Rgb fallback) const {
   const nlohmann::json* v = lookup(key);
   return v ? json_rgb(*v, place_of(*this, key)) : fallback;

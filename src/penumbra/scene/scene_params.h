@@ -35,8 +35,13 @@ class SceneParams {
   std::string get_string(const std::string& key, const std::string& fallback) const;
   Vec3 get_vec3(const std::string& key, Vec3 fallback) const;
   Vec3 require_vec3(const std::string& key) const;
+  /// Pair of numbers `[a, b]`.
+  Vec2 get_vec2(const std::string& key, Vec2 fallback) const;
   /// RGB triple; a single number s is accepted as (s, s, s).
   Rgb get_rgb(const std::string& key, Rgb fallback) const;
+  /// The raw JSON value of `key` (marked used), or nullptr when absent: for values a class parses
+  /// itself, such as a colour that may be a texture object.
+  const nlohmann::json* get_json(const std::string& key) const { return lookup(key); }
 
   /// Throws InputError for a value out of range: "FILE:/path/key: MESSAGE".
   [[noreturn]] void fail(const std::string& key, const std::string& message) const;

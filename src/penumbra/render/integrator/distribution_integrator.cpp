@@ -85,6 +85,8 @@ Rgb DistributionIntegrator::trace(const Ray& ray, int depth, float bsdf_pdf, Sam
                                   RayCounter& counter) const {
   SurfaceInteraction si;
   if (!world_.intersect(ray, si, counter)) return world_.background();
+  MaterialScratch scratch;
+  si.material = &si.material->at(si, scratch);  // textures evaluated at the hit
   Rgb radiance;
   // Emission seen directly or through specular paths counts fully; seen along a glossy BSDF
   // sample it is weighted against the light samples that also reached it.

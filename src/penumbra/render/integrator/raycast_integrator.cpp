@@ -24,6 +24,8 @@ std::string RaycastIntegrator::name() const {
 Rgb RaycastIntegrator::li(const Ray& ray, Sampler&, RayCounter& counter) const {
   SurfaceInteraction si;
   if (!world_.intersect(ray, si, counter)) return world_.background();
+  MaterialScratch scratch;
+  si.material = &si.material->at(si, scratch);  // textures evaluated at the hit
   switch (mode_) {
     case Mode::kNormal:
       return {0.5f * (si.ns.x + 1.0f), 0.5f * (si.ns.y + 1.0f), 0.5f * (si.ns.z + 1.0f)};

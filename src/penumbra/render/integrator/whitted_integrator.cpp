@@ -25,6 +25,8 @@ Rgb WhittedIntegrator::trace(const Ray& ray, int depth, Sampler& sampler,
                              RayCounter& counter) const {
   SurfaceInteraction si;
   if (!world_.intersect(ray, si, counter)) return world_.background();
+  MaterialScratch scratch;
+  si.material = &si.material->at(si, scratch);  // textures evaluated at the hit
   Rgb radiance = si.emitted;
   const Material& material = *si.material;
   const Vec3 wo = si.to_local(si.wo);

@@ -4,14 +4,20 @@
 #include <numbers>
 
 #include "penumbra/render/sampling.h"
+#include "penumbra/render/texture/texture_params.h"
 
 namespace penumbra {
 
 DiffuseMaterial::DiffuseMaterial(const SceneParams& params) {
-  albedo_ = params.get_rgb("albedo", Rgb(0.5f));
-  for (int c = 0; c < 3; ++c)
-    if (!(albedo_[c] >= 0.0f && albedo_[c] <= 1.0f)) params.fail("albedo", "must lie in [0, 1]");
+  albedo_texture_ = read_texture(params, "albedo", Rgb(0.5f), 0.0f, 1.0f);
+  textured_ = !albedo_texture_.is_constant();
+  albedo_ = albedo_texture_.eval(TextureQuery{});  // the colour itself when constant
   params.check_all_used();
+}
+
+const Material& DiffuseMaterial::resolve(const SurfaceInteraction& si,
+                                         MaterialScratch& scratch) const {
+  return scratch.emplace<DiffuseMaterial>(albedo_texture_.eval(si));
 }
 
 Rgb DiffuseMaterial::eval(Vec3 wo, Vec3 wi) const {

@@ -1,12 +1,13 @@
 #pragma once
 /// Lambertian (ideal diffuse) reflection.
 #include "penumbra/render/material/material.h"
+#include "penumbra/render/texture/texture.h"
 #include "penumbra/scene/scene_params.h"
 
 namespace penumbra {
 
-/// Lambertian BRDF albedo / pi, reflecting on both sides. Parameters: albedo (RGB in [0, 1],
-/// default 0.5).
+/// Lambertian BRDF albedo / pi, reflecting on both sides. Parameters: albedo (RGB in [0, 1], or a
+/// texture of such colours; default 0.5).
 class DiffuseMaterial final : public Material {
  public:
   explicit DiffuseMaterial(Rgb albedo) : albedo_(albedo) {}
@@ -18,8 +19,12 @@ class DiffuseMaterial final : public Material {
   bool has_non_specular() const override { return true; }
   Rgb albedo() const override { return albedo_; }
 
+ protected:
+  const Material& resolve(const SurfaceInteraction& si, MaterialScratch& scratch) const override;
+
  private:
   Rgb albedo_;
+  Texture albedo_texture_;  ///< used when textured_
 };
 
 }  // namespace penumbra

@@ -2,12 +2,36 @@
 /// Materials: the BSDF at a surface point, in the local shading frame (z = shading normal, pointing
 /// to the side the surface's front faces). Directions wo (towards the viewer) and wi (towards the
 /// light) point away from the surface.
+#include <cstddef>
+#include <new>
 #include <optional>
+#include <utility>
 
 #include "penumbra/core/color.h"
 #include "penumbra/core/vec.h"
 
 namespace penumbra {
+
+struct SurfaceInteraction;
+
+/// Room for the material that a textured material becomes at one surface point, so that looking
+/// up textures allocates nothing (as pbrt-v4's Material::GetBxDF returns its BxDF by value). An
+/// integrator keeps one on its stack per hit. As in pbrt-v4's ScratchBuffer, destructors are never
+/// run: what is built here must own no resources (materials holding colours and textures do not).
+/// So an unused scratch costs nothing.
+class MaterialScratch {
+ public:
+  /// Constructs a T here, over whatever was here before, and returns it.
+  template <class T, class... Args>
+  const T& emplace(Args&&... args) {
+    static_assert(sizeof(T) <= kBytes && alignof(T) <= kAlign, "MaterialScratch is too small");
+    return *new (bytes_) T(std::forward<Args>(args)...);
+  }
+
+ private:
+  static constexpr size_t kBytes = 160, kAlign = 16;
+  alignas(kAlign) std::byte bytes_[kBytes];
+};
 
 /// A direction drawn from a BSDF with its value and density.
 struct BsdfSample {
@@ -43,6 +67,19 @@ class Material {
   virtual bool is_glossy() const { return false; }
   /// A representative reflectance, for debugging views.
   virtual Rgb albedo() const = 0;
+  /// This material at surface point `si`: itself, or, when a parameter is textured, a copy with
+  /// the textures evaluated at `si`, built in `scratch` (which must outlive the use).
+  const Material& at(const SurfaceInteraction& si, MaterialScratch& scratch) const {
+    return textured_ ? resolve(si, scratch) : *this;
+  }
+
+ protected:
+  /// Builds the material with this one's textures evaluated at `si` (called when textured_).
+  virtual const Material& resolve(const SurfaceInteraction&, MaterialScratch&) const {
+    return *this;
+  }
+  /// Set by a material with a non-constant texture; untextured materials skip the lookup.
+  bool textured_ = false;
 };
 
 /// Cosine of a local-frame direction with the normal.

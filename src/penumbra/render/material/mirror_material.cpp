@@ -2,14 +2,20 @@
 
 #include <cmath>
 
+#include "penumbra/render/texture/texture_params.h"
+
 namespace penumbra {
 
 MirrorMaterial::MirrorMaterial(const SceneParams& params) {
-  reflectance_ = params.get_rgb("reflectance", Rgb(1.0f));
-  for (int c = 0; c < 3; ++c)
-    if (!(reflectance_[c] >= 0.0f && reflectance_[c] <= 1.0f))
-      params.fail("reflectance", "must lie in [0, 1]");
+  reflectance_texture_ = read_texture(params, "reflectance", Rgb(1.0f), 0.0f, 1.0f);
+  textured_ = !reflectance_texture_.is_constant();
+  reflectance_ = reflectance_texture_.eval(TextureQuery{});  // the colour itself when constant
   params.check_all_used();
+}
+
+const Material& MirrorMaterial::resolve(const SurfaceInteraction& si,
+                                        MaterialScratch& scratch) const {
+  return scratch.emplace<MirrorMaterial>(reflectance_texture_.eval(si));
 }
 
 int MirrorMaterial::specular_lobes(Vec3 wo, SpecularLobe out[2]) const {

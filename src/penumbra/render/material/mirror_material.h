@@ -1,11 +1,13 @@
 #pragma once
 /// Perfect specular reflection.
 #include "penumbra/render/material/material.h"
+#include "penumbra/render/texture/texture.h"
 #include "penumbra/scene/scene_params.h"
 
 namespace penumbra {
 
-/// An ideal mirror. Parameters: reflectance (RGB in [0, 1], default 1).
+/// An ideal mirror. Parameters: reflectance (RGB in [0, 1], or a texture of such colours; default
+/// 1).
 class MirrorMaterial final : public Material {
  public:
   explicit MirrorMaterial(Rgb reflectance) : reflectance_(reflectance) {}
@@ -17,8 +19,12 @@ class MirrorMaterial final : public Material {
   bool has_non_specular() const override { return false; }
   Rgb albedo() const override { return reflectance_; }
 
+ protected:
+  const Material& resolve(const SurfaceInteraction& si, MaterialScratch& scratch) const override;
+
  private:
   Rgb reflectance_;
+  Texture reflectance_texture_;  ///< used when textured_
 };
 
 }  // namespace penumbra

@@ -1,0 +1,95 @@
+#include "penumbra/render/texture/texture_params.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "penumbra/scene/json_value.h"
+
+namespace penumbra {
+
+namespace {
+
+/// Checks that every channel of `c` lies in [lo, hi], failing at `place`.
+Rgb checked(Rgb c, const JsonPlace& place, float lo, float hi) {
+  for (int i = 0; i < 3; ++i)
+    if (!(c[i] >= lo && c[i] <= hi)) place.fail(fmt::format("must lie in [{}, {}]", lo, hi));
+  return c;
+}
+
+/// A positive finite number.
+float positive(const SceneParams& p, const std::string& key, float value) {
+  if (!(value > 0.0f) || !std::isfinite(value)) p.fail(key, "must be a positive number");
+  return value;
+}
+
+/// The pair "colors": [C0, C1] of a texture, default (black, white).
+void read_colors(const SceneParams& tex, float lo, float hi, Rgb& c0, Rgb& c1) {
+  c0 = Rgb(0.0f);
+  c1 = Rgb(std::min(1.0f, hi));
+  const nlohmann::json* v = tex.get_json("colors");
+  if (!v) return;
+  const JsonPlace place = JsonPlace{tex.file(), tex.path()}.key("colors");
+  const nlohmann::json& a = json_array(*v, place);
+  if (a.size() != 2) place.fail(fmt::format("expected an array of 2 colours, got {}", a.size()));
+  c0 = checked(json_rgb(a[0], place.index(0)), place.index(0), lo, hi);
+  c1 = checked(json_rgb(a[1], place.index(1)), place.index(1), lo, hi);
+}
+
+/// The texture described by the object `tex`.
+Texture parse_texture(const SceneParams& tex, float lo, float hi) {
+  const JsonPlace here{tex.file(), tex.path()};
+  Texture t;
+  Rgb c0, c1;
+  if (tex.type() == "constant") {
+    const nlohmann::json* v = tex.get_json("color");
+    if (!v) here.fail("missing required key \"color\"");
+    t = Texture::constant(checked(json_rgb(*v, here.key("color")), here.key("color"), lo, hi));
+  } else if (tex.type() == "checkerboard") {
+    const nlohmann::json* s = tex.get_json("scale");
+    if (!s) here.fail("missing required key \"scale\"");
+    const std::string space = tex.get_string("space", "uv");
+    read_colors(tex, lo, hi, c0, c1);
+    if (space == "uv") {
+      const Vec2 scale = s->is_array() ? json_vec2(*s, here.key("scale"))
+                                       : Vec2(json_float(*s, here.key("scale")),
+                                              json_float(*s, here.key("scale")));
+      positive(tex, "scale", scale.x);
+      positive(tex, "scale", scale.y);
+      t = Texture::checkerboard(scale, c0, c1);
+    } else if (space == "world") {
+      t = Texture::checkerboard_3d(positive(tex, "scale", json_float(*s, here.key("scale"))), c0,
+                                   c1);
+    } else {
+      tex.fail("space", "unknown space '" + space + "' (valid: uv, world)");
+    }
+  } else if (tex.type() == "zone_plate") {
+    const float k = positive(tex, "k", tex.require_float("k"));
+    const nlohmann::json* c = tex.get_json("center");
+    const Vec2 center = c ? json_vec2(*c, here.key("center")) : Vec2(0.5f, 0.5f);
+    read_colors(tex, lo, hi, c0, c1);
+    t = Texture::zone_plate(k, center, c0, c1);
+  } else {
+    tex.fail("type", "unknown texture type '" + tex.type() + "' (valid: " + kTextureTypes + ")");
+  }
+  tex.check_all_used();
+  return t;
+}
+
+}  // namespace
+
+Texture read_texture(const SceneParams& params, const std::string& key, Rgb fallback, float lo,
+                     float hi) {
+  const nlohmann::json* v = params.get_json(key);
+  if (!v) return Texture::constant(fallback);
+  const JsonPlace place = JsonPlace{params.file(), params.path()}.key(key);
+  if (v->is_object()) return parse_texture(SceneParams(*v, place.file, place.path), lo, hi);
+  // A plain colour: the message of the untextured materials.
+  const Rgb c = json_rgb(*v, place);
+  for (int i = 0; i < 3; ++i)
+    if (!(c[i] >= lo && c[i] <= hi)) params.fail(key, fmt::format("must lie in [{}, {}]", lo, hi));
+  return Texture::constant(c);
+}
+
+}  // namespace penumbra
