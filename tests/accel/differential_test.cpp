@@ -1,5 +1,6 @@
-/// Every registered structure against `brute` on generated scene families: closest hits (same
-/// primitive, or another one hit at the same t), occlusion with infinite and finite tmax. The
+/// Every registered structure against `brute` on generated scene families, static and moving:
+/// closest hits (same primitive, or another one hit at the same t), occlusion with infinite and
+/// finite tmax. The
 /// structures come from the registry, so a new structure is tested by registering it.
 #include <gtest/gtest.h>
 
@@ -55,6 +56,11 @@ const std::vector<Case>& family(const std::string& name) {
   if (name == "thin") scenes.emplace_back(thin_and_large(13), 100'000);
   if (name == "mixed") scenes.emplace_back(mixed_shapes(14), 100'000);
   if (name == "degenerate") scenes.emplace_back(degenerate_triangles(15), 100'000);
+  // Moving geometry (rays with times): every structure must bound primitives over the whole
+  // time interval and test them at the ray's time.
+  if (name == "moving_soup") scenes.emplace_back(moving_soup(1000, 16), 100'000);
+  if (name == "moving_shapes") scenes.emplace_back(moving_shapes(17), 100'000);
+  if (name == "static_and_moving") scenes.emplace_back(static_and_moving(18), 100'000);
   if (name == "torus") {  // the 50k-triangle mesh gets fewer rays: brute costs O(N) per ray
     scenes.emplace_back(torus(20, 25), 60'000);
     scenes.emplace_back(torus(50, 40), 36'000);
@@ -65,6 +71,7 @@ const std::vector<Case>& family(const std::string& name) {
   for (auto& [scene, n] : scenes) {
     Case c{std::move(scene), {}, {}};
     c.rays = mixed_rays(c.scene.prims, n, seed++);
+    if (c.scene.prims.has_motion()) set_random_times(c.rays, seed);
     c.reference = brute_hits(c.scene.prims, c.rays);
     cases.push_back(std::move(c));
   }
@@ -77,7 +84,7 @@ std::string describe(const Ray& r) {
 }
 
 /// Distance along `r` to primitive `id`'s plane (triangles, quads) or surface (spheres) in double
-/// precision: the geometry's answer, free of the float test's rounding.
+/// precision, at the ray's time: the geometry's answer, free of the float test's rounding.
 double exact_t(const PrimitiveSet& prims, uint32_t id, const Ray& r, double t_hint) {
   const auto d3 = [](Vec3 v) { return std::array<double, 3>{v.x, v.y, v.z}; };
   const auto sub = [](std::array<double, 3> a, std::array<double, 3> b) {
@@ -92,12 +99,13 @@ double exact_t(const PrimitiveSet& prims, uint32_t id, const Ray& r, double t_hi
   };
   switch (prims.kind(id)) {
     case PrimKind::kTriangle: {
-      const Vec3* v = prims.triangle(id);
+      Vec3 v[3];
+      prims.triangle_at(id, r.time, v);
       const auto n = crossd(sub(d3(v[1]), d3(v[0])), sub(d3(v[2]), d3(v[0])));
       return dotd(n, sub(d3(v[0]), d3(r.o))) / dotd(n, d3(r.d));
     }
     case PrimKind::kQuad: {
-      const QuadData& q = prims.quad(id);
+      const QuadData q = prims.quad_at(id, r.time);
       const auto n = crossd(d3(q.e1), d3(q.e2));
       return dotd(n, sub(d3(q.p), d3(r.o))) / dotd(n, d3(r.d));
     }
@@ -218,6 +226,16 @@ TEST_P(AccelDifferential, DegenerateAndNonFiniteTriangles) {
 }
 TEST_P(AccelDifferential, TessellatedTorus) {
   run_family("torus");
+}
+
+TEST_P(AccelDifferential, MovingTriangleSoup) {
+  run_family("moving_soup");
+}
+TEST_P(AccelDifferential, MovingSpheresQuadsAndTriangles) {
+  run_family("moving_shapes");
+}
+TEST_P(AccelDifferential, StaticRoomWithMovingPrimitives) {
+  run_family("static_and_moving");
 }
 
 TEST_P(AccelDifferential, EmptyAndAllInvalidSetsAreNeverHit) {

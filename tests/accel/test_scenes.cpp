@@ -184,6 +184,97 @@ TestScene torus(int rings, int sides) {
   return s;
 }
 
+namespace {
+
+/// A random motion: the end transform of a primitive near `c` that starts at the identity, a
+/// turn of up to `turn` degrees about `c`, a scale in [0.8, 1.2] about it and a translation of up
+/// to `reach` along each axis.
+Transform random_motion(Pcg32& rng, Vec3 c, float reach, float turn) {
+  const Vec3 d = (random_vec(rng) - Vec3(0.5f)) * (2.0f * reach);
+  const float s = 0.8f + 0.4f * rng.next_float();
+  return translate(c + d) * rotate(turn * rng.next_float(), random_dir(rng)) * scale(Vec3(s)) *
+         translate(-c);
+}
+
+/// Appends one triangle moving from (a, b, c) to its image under `end`.
+void add_moving_triangle(PrimitiveSet& prims, Vec3 a, Vec3 b, Vec3 c, const Transform& end) {
+  TriangleMesh m;
+  m.positions = {a, b, c};
+  m.indices = {0, 1, 2};
+  prims.add_moving_mesh(m, Transform(), end, 0);
+}
+
+}  // namespace
+
+TestScene moving_soup(int n, uint64_t seed) {
+  TestScene s{"moving_soup", {}};
+  Pcg32 rng(seed, 7);
+  for (int i = 0; i < n; ++i) {
+    const Vec3 c = random_vec(rng);
+    const float size = 0.01f + 0.2f * rng.next_float() * rng.next_float();
+    Vec3 v[3];
+    for (Vec3& p : v) p = c + (random_vec(rng) - Vec3(0.5f)) * size;
+    const Transform end = i % 5 == 4 ? Transform() : random_motion(rng, c, 0.1f, 40.0f);
+    add_moving_triangle(s.prims, v[0], v[1], v[2], end);
+  }
+  return s;
+}
+
+TestScene moving_shapes(uint64_t seed) {
+  TestScene s{"moving_shapes", {}};
+  Pcg32 rng(seed, 8);
+  for (int i = 0; i < 200; ++i) {
+    const SphereData a{random_vec(rng) * 5.0f, 0.02f + 0.3f * rng.next_float()};
+    SphereData b = a;
+    if (i % 6 != 5) b.center = a.center + (random_vec(rng) - Vec3(0.5f)) * 1.0f;
+    if (i % 3 == 0) b.radius = a.radius * (0.5f + rng.next_float());
+    s.prims.add_moving_sphere(a, b, 1);
+  }
+  for (int i = 0; i < 200; ++i) {
+    const QuadData a{random_vec(rng) * 5.0f, random_dir(rng) * 0.5f, random_dir(rng) * 0.5f};
+    QuadData b = a;
+    if (i % 6 != 5)
+      b = {a.p + (random_vec(rng) - Vec3(0.5f)) * 1.0f, random_dir(rng) * 0.5f,
+           random_dir(rng) * 0.5f};
+    s.prims.add_moving_quad(a, b, 2);
+  }
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 a = random_vec(rng) * 5.0f;
+    const Transform end = i % 6 == 5 ? Transform() : random_motion(rng, a, 0.5f, 90.0f);
+    add_moving_triangle(s.prims, a, a + random_dir(rng) * 0.4f, a + random_dir(rng) * 0.4f, end);
+  }
+  return s;
+}
+
+TestScene static_and_moving(uint64_t seed) {
+  TestScene s = room_with_boxes(40, seed);
+  s.name = "static_and_moving";
+  Pcg32 rng(seed, 9);
+  for (int i = 0; i < 200; ++i) {  // fast movers: across a third of the room
+    const Vec3 a = random_vec(rng) * 10.0f;
+    add_moving_triangle(s.prims, a, a + random_dir(rng) * 0.8f, a + random_dir(rng) * 0.8f,
+                        random_motion(rng, a, 3.0f, 30.0f));
+  }
+  for (int i = 0; i < 100; ++i) {
+    const SphereData a{random_vec(rng) * 10.0f, 0.1f + 0.4f * rng.next_float()};
+    s.prims.add_moving_sphere(a, {a.center + random_dir(rng) * 2.0f, a.radius}, 1);
+  }
+  for (int i = 0; i < 100; ++i) {  // axis-aligned quads sliding in their own plane
+    const QuadData a{Vec3(float(rng.next_bounded(10)), float(rng.next_bounded(10)), 5.0f),
+                     Vec3(1, 0, 0), Vec3(0, 1, 0)};
+    s.prims.add_moving_quad(a, {a.p + Vec3(float(rng.next_bounded(3)), 0, 0), a.e1, a.e2}, 2);
+  }
+  return s;
+}
+
+void set_random_times(std::vector<Ray>& rays, uint64_t seed) {
+  Pcg32 rng(seed, 10);
+  for (Ray& r : rays) {
+    const uint32_t k = rng.next_bounded(20);
+    r.time = k == 0 ? 0.0f : k == 1 ? 1.0f : k == 2 ? -0.5f : k == 3 ? 1.5f : rng.next_float();
+  }
+}
+
 Vec3 point_on(const PrimitiveSet& prims, uint32_t id, float u1, float u2) {
   switch (prims.kind(id)) {
     case PrimKind::kTriangle: {

@@ -31,12 +31,24 @@ TestScene degenerate_triangles(uint64_t seed);
 /// A torus tessellated into 2 * rings * sides triangles (a stand-in for a scanned mesh).
 TestScene torus(int rings, int sides);
 
+/// `n` random triangles as in random_soup, four in five moving (translated by up to a tenth of
+/// the cube, turned by up to 40 degrees and scaled between time 0 and time 1), the rest static.
+TestScene moving_soup(int n, uint64_t seed);
+/// Moving spheres (some growing), parallelograms and triangles, a few of each static.
+TestScene moving_shapes(uint64_t seed);
+/// A static room with boxes (as room_with_boxes) crossed by moving triangles, spheres and quads.
+TestScene static_and_moving(uint64_t seed);
+/// Gives every ray a time: mostly uniform in [0, 1], some exactly 0 or 1, some outside [0, 1]
+/// (where primitives stay at their ends).
+void set_random_times(std::vector<Ray>& rays, uint64_t seed);
+
 /// A mixed ray set over `prims`: random origins and directions, origins on surfaces, directions
 /// with zero components and axis-parallel rays with origins on vertex coordinates (so they run
 /// along box and triangle planes). tmin = 0, tmax = infinity.
 std::vector<Ray> mixed_rays(const PrimitiveSet& prims, size_t n, uint64_t seed);
 
-/// A point on primitive `id` (random barycentric / surface coordinates from u1, u2).
+/// A point on primitive `id` (random barycentric / surface coordinates from u1, u2), at time 0
+/// for a moving primitive.
 Vec3 point_on(const PrimitiveSet& prims, uint32_t id, float u1, float u2);
 
 }  // namespace penumbra::test

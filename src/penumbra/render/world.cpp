@@ -33,28 +33,53 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
     info.flip_normal = sd.to_world.swaps_handedness();
     const auto shape = static_cast<uint32_t>(s);
     const uint32_t first = prims_.size();
+    // A moving shape (to_world_end set) goes from to_world at time 0 to to_world_end at time 1.
+    if (sd.to_world_end && sd.emission && !sd.emission->is_black())
+      throw InputError(desc.file, sd.path + "/transform_end", "a moving shape cannot be emissive");
+    const Transform& end = sd.to_world_end ? *sd.to_world_end : sd.to_world;
     if (const auto* sphere = std::get_if<SphereData>(&sd.geometry)) {
-      const float scale = length(sd.to_world.vector({1, 0, 0}));
+      const auto world_sphere = [&](const Transform& m) {
+        return SphereData{m.point(sphere->center), sphere->radius * length(m.vector({1, 0, 0}))};
+      };
       info.flip_normal = false;  // a sphere's front is always outside
-      prims_.add_sphere({sd.to_world.point(sphere->center), sphere->radius * scale}, shape);
+      if (sd.to_world_end)
+        prims_.add_moving_sphere(world_sphere(sd.to_world), world_sphere(end), shape);
+      else
+        prims_.add_sphere(world_sphere(sd.to_world), shape);
     } else if (const auto* quad = std::get_if<QuadData>(&sd.geometry)) {
-      prims_.add_quad({sd.to_world.point(quad->p), sd.to_world.vector(quad->e1),
-                       sd.to_world.vector(quad->e2)},
-                      shape);
+      const auto world_quad = [&](const Transform& m) {
+        return QuadData{m.point(quad->p), m.vector(quad->e1), m.vector(quad->e2)};
+      };
+      if (sd.to_world_end)
+        prims_.add_moving_quad(world_quad(sd.to_world), world_quad(end), shape);
+      else
+        prims_.add_quad(world_quad(sd.to_world), shape);
     } else {
       const auto& mesh = std::get<TriangleMesh>(sd.geometry);
-      prims_.add_mesh(mesh, sd.to_world, shape);
+      if (sd.to_world_end)
+        prims_.add_moving_mesh(mesh, sd.to_world, end, shape);
+      else
+        prims_.add_mesh(mesh, sd.to_world, shape);
       if (!mesh.normals.empty() || !mesh.uvs.empty()) {
         TriangleMesh attrs;
         attrs.indices = mesh.indices;
         attrs.uvs = mesh.uvs;
-        for (const Vec3& n : mesh.normals) attrs.normals.push_back(normalize(sd.to_world.normal(n)));
+        for (const Vec3& n : mesh.normals)
+          attrs.normals.push_back(normalize(sd.to_world.normal(n)));
         info.mesh = static_cast<int>(meshes_.size());
         meshes_.push_back(std::move(attrs));
+        if (sd.to_world_end && !mesh.normals.empty()) {
+          // A moving mesh's shading normals at time 1 too (interpolated at the hit's time).
+          TriangleMesh ends;
+          for (const Vec3& n : mesh.normals) ends.normals.push_back(normalize(end.normal(n)));
+          info.mesh_end = static_cast<int>(meshes_.size());
+          meshes_.push_back(std::move(ends));
+        }
       }
     }
     if (sd.emission && !sd.emission->is_black())
-      emitters_.push_back({shape, first, prims_.size() - first, *sd.emission, sd.two_sided_emission});
+      emitters_.push_back(
+          {shape, first, prims_.size() - first, *sd.emission, sd.two_sided_emission});
     shapes_.push_back(info);
   }
 
@@ -63,6 +88,7 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
 }
 
 Vec3 World::area_normal(uint32_t prim) const {
+  // Emitters never move (the loader rejects moving emissive shapes): the time-0 geometry.
   Vec3 n;
   if (prims_.kind(prim) == PrimKind::kTriangle) {
     const Vec3* p = prims_.triangle(prim);
@@ -96,9 +122,11 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
   si.material = shape.material;
   si.wo = normalize(-ray.d);
   si.uv = {hit.u, hit.v};
+  // The primitive's geometry at the ray's time (its only geometry when it is static).
   switch (prims_.kind(id)) {
     case PrimKind::kTriangle: {
-      const Vec3* p = prims_.triangle(id);
+      Vec3 p[3];
+      prims_.triangle_at(id, ray.time, p);
       const float b0 = 1.0f - hit.u - hit.v;
       si.p = p[0] * b0 + p[1] * hit.u + p[2] * hit.v;
       // Error of a barycentric combination (pbrt-v3 section 3.9.4).
@@ -107,7 +135,7 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
       break;
     }
     case PrimKind::kSphere: {
-      const SphereData& s = prims_.sphere(id);
+      const SphereData s = prims_.sphere_at(id, ray.time);
       const Vec3 d = ray.at(hit.t) - s.center;
       // Reproject onto the surface; the error is then a few ulps of p (pbrt-v3 section 3.9.4).
       si.p = s.center + d * (s.radius / length(d));
@@ -119,7 +147,7 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
       break;
     }
     case PrimKind::kQuad: {
-      const QuadData& q = prims_.quad(id);
+      const QuadData q = prims_.quad_at(id, ray.time);
       si.p = q.p + q.e1 * hit.u + q.e2 * hit.v;
       si.p_error = (abs(q.p) + abs(q.e1 * hit.u) + abs(q.e2 * hit.v)) * gamma(6);
       si.ng = normalize(cross(q.e1, q.e2));
@@ -134,7 +162,12 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
     const uint32_t* idx = &m.indices[3 * size_t(origin.local)];
     const float b0 = 1.0f - hit.u - hit.v;
     if (!m.normals.empty()) {
-      const Vec3 n = m.normals[idx[0]] * b0 + m.normals[idx[1]] * hit.u + m.normals[idx[2]] * hit.v;
+      Vec3 n = m.normals[idx[0]] * b0 + m.normals[idx[1]] * hit.u + m.normals[idx[2]] * hit.v;
+      if (shape.mesh_end >= 0) {  // a moving mesh: the normal interpolated to the ray's time
+        const std::vector<Vec3>& e = meshes_[size_t(shape.mesh_end)].normals;
+        const Vec3 n1 = e[idx[0]] * b0 + e[idx[1]] * hit.u + e[idx[2]] * hit.v;
+        n = motion_lerp(motion_time(ray.time), n, n1);
+      }
       if (dot(n, n) > 0.0f && is_finite(n)) si.ns = face_forward(normalize(n), si.ng);
     }
     if (!m.uvs.empty()) {

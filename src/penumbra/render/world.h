@@ -42,7 +42,8 @@ class World {
   /// Completes the surface interaction of a hit found by the accelerator.
   void interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) const;
 
-  /// Area times unit front normal of a planar primitive (zero vector for a sphere).
+  /// Area times unit front normal of a planar primitive (zero vector for a sphere); at time 0 for
+  /// a moving one (emitters, its users, never move).
   Vec3 area_normal(uint32_t prim) const;
 
   const PrimitiveSet& primitives() const { return prims_; }
@@ -59,6 +60,7 @@ class World {
     bool two_sided = false;
     bool flip_normal = false;  ///< transform swaps handedness: the front side flips
     int mesh = -1;             ///< index into meshes_ for shading normals and uvs, or -1
+    int mesh_end = -1;         ///< a moving mesh's shading normals at time 1, or -1
   };
 
   PrimitiveSet prims_;

@@ -39,6 +39,9 @@ struct ShapeDesc {
   /// Sphere, parallelogram or triangle mesh (inline or loaded from OBJ/PLY).
   std::variant<SphereData, QuadData, TriangleMesh> geometry;
   Transform to_world;
+  /// For a moving shape, the object-to-world transform at time 1 ("transform_end"); to_world is
+  /// then the one at time 0 and vertices move linearly between the two (see PrimitiveSet).
+  std::optional<Transform> to_world_end;
   std::string material;         ///< name of a MaterialDesc
   std::optional<Rgb> emission;  ///< radiance emitted on the front side, when emissive
   bool two_sided_emission = false;

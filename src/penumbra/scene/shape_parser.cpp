@@ -18,8 +18,8 @@ namespace {
 
 // Fails when `v` has a key that neither every shape nor a shape of `type` takes.
 void check_shape_keys(const json& v, const JsonPlace& place, const std::string& type) {
-  std::vector<std::string> known = {"type",     "name",      "material",
-                                    "emission", "two_sided", "transform"};
+  std::vector<std::string> known = {"type",      "name",      "material",     "emission",
+                                    "two_sided", "transform", "transform_end"};
   if (type == "sphere") {
     known.insert(known.end(), {"center", "radius"});
   } else if (type == "quad") {
@@ -133,6 +133,26 @@ TriangleMesh read_mesh_file(const json& v, const JsonPlace& place, const std::st
   return mesh;
 }
 
+// The end transform of a moving shape ("transform_end", time 1), with its checks.
+void parse_motion(const json& ops, const JsonPlace& place, const std::string& type,
+                  ShapeDesc& shape) {
+  const JsonPlace ep = place.key("transform_end");
+  const Transform end = parse_transform(ops, ep);
+  if (shape.emission)
+    ep.fail(
+        "a moving shape cannot be emissive: area lights sample points on their shapes without a "
+        "time (make the light static, or give the moving shape no \"emission\")");
+  if (type == "sphere" && !is_similarity(end))
+    ep.fail(
+        "a sphere's transform_end must be a similarity (rotations, translations, uniform "
+        "scales); this one scales non-uniformly or shears");
+  if (end.swaps_handedness() != shape.to_world.swaps_handedness())
+    ep.fail(
+        "transform_end mirrors the shape and transform does not (or the reverse): the shape "
+        "would turn inside out while moving");
+  shape.to_world_end = end;
+}
+
 std::string unknown_material(const std::string& name, const std::set<std::string>& materials) {
   if (materials.empty()) return "unknown material \"" + name + "\" (no materials are defined)";
   std::string list;
@@ -177,6 +197,7 @@ ShapeDesc parse_shape(const json& v, const JsonPlace& place, const std::set<std:
               "scales); "
               "this one scales non-uniformly or shears");
   }
+  if (const json* ops = json_find(v, "transform_end")) parse_motion(*ops, place, type, shape);
 
   // The geometry, in object space.
   if (type == "sphere") {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include <fmt/format.h>
@@ -67,16 +68,17 @@ struct Job {
   int depth;
 };
 
-/// Polygon of primitive `id` (3 or 4 vertices), or 0 for a sphere.
-int prim_polygon(const PrimitiveSet& prims, uint32_t id, Vec3d out[4]) {
+/// Polygon of primitive `id` (3 or 4 vertices) at time 0, or at time 1 when `end`; 0 for a
+/// sphere.
+int end_polygon(const PrimitiveSet& prims, uint32_t id, bool end, Vec3d out[4]) {
   switch (prims.kind(id)) {
     case PrimKind::kTriangle: {
-      const Vec3* p = prims.triangle(id);
+      const Vec3* p = end ? prims.triangle_end(id) : prims.triangle(id);
       for (int k = 0; k < 3; ++k) out[k] = Vec3d(p[k]);
       return 3;
     }
     case PrimKind::kQuad: {  // corners in order around the parallelogram, summed in double
-      const QuadData& q = prims.quad(id);
+      const QuadData& q = end ? prims.quad_end(id) : prims.quad(id);
       const Vec3d p(q.p), e1(q.e1), e2(q.e2);
       out[0] = p, out[1] = p + e1, out[2] = p + e1 + e2, out[3] = p + e2;
       return 4;
@@ -85,6 +87,15 @@ int prim_polygon(const PrimitiveSet& prims, uint32_t id, Vec3d out[4]) {
       return 0;
   }
 }
+
+/// Polygon of a static primitive `id` (3 or 4 vertices); 0 for a sphere or a moving primitive,
+/// which has no fixed plane: it never splits and is an object, like a sphere.
+int prim_polygon(const PrimitiveSet& prims, uint32_t id, Vec3d out[4]) {
+  return prims.moving(id) ? 0 : end_polygon(prims, id, false, out);
+}
+
+/// Nodes with fewer objects (and no fragments) are leaves.
+constexpr size_t kMinObjectsToSplit = 8;
 
 /// Top-down, depth-first auto-partition with an explicit stack of jobs.
 class Builder {
@@ -103,10 +114,16 @@ class Builder {
       const auto index = uint32_t(out_.nodes.size());
       out_.nodes.emplace_back();
       if (job.parent != kBspEmpty) out_.nodes[job.parent].child[job.side] = index;
-      if (job.list.frags.empty() || job.depth >= params_.max_depth)
+      if (job.depth >= params_.max_depth) {
         make_leaf(job, index);
-      else
-        split(job, index, choose(job.list), jobs);
+      } else if (!job.list.frags.empty()) {
+        const size_t splitter = choose(job.list);
+        split(job, index, planes_[job.list.frags[splitter].prim], splitter, jobs);
+      } else if (const auto plane = object_splitter(job.list)) {
+        split(job, index, *plane, SIZE_MAX, jobs);
+      } else {
+        make_leaf(job, index);
+      }
     }
     out_.nodes.shrink_to_fit();
     out_.refs.shrink_to_fit();
@@ -128,6 +145,7 @@ class Builder {
     if (!b.empty()) out_.scale = std::max(max_component(abs(b.lo)), max_component(abs(b.hi)));
     eps_ = kBspBuildEps * out_.scale;
     planes_.assign(prims_.size(), BspPlane{});
+    object_plane_.assign(prims_.size(), 0);
     FragList list;
     Vec3d poly[4];
     for (uint32_t id : order) {
@@ -139,11 +157,52 @@ class Builder {
         list.add(id, {poly, size_t(n)});
       } else {
         list.objects.push_back(id);
+        if (prims_.moving(id)) moving_plane(id);
       }
     }
     out_.planar = list.frags.size();
     spend(list.frags.size() + list.objects.size());
     return list;
+  }
+
+  /// A moving polygon's plane half-way through its motion (a splitting candidate for nodes left
+  /// with objects only), when it has one.
+  void moving_plane(uint32_t id) {
+    Vec3d a[4], b[4];
+    const int n = end_polygon(prims_, id, false, a);
+    end_polygon(prims_, id, true, b);
+    for (int k = 0; k < n; ++k) a[k] = (a[k] + b[k]) * 0.5;
+    if (const auto plane = polygon_plane({a, size_t(n)}, 0.5 * eps_)) {
+      planes_[id] = *plane;
+      object_plane_[id] = 1;
+    }
+  }
+
+  /// For a node without fragments: the plane of one of its moving polygons (at mid-motion) that
+  /// best splits its objects, or none (a leaf). Moving primitives never lie in a plane, so the
+  /// plane only separates; without it a mesh that moves as a whole would be one leaf (brute
+  /// force). Among up to 8 candidates spread over the node's (random) order, the one leaving the
+  /// fewest objects on its fuller side, which must hold fewer than the node (progress).
+  std::optional<BspPlane> object_splitter(const FragList& list) {
+    const std::vector<uint32_t>& objs = list.objects;
+    if (objs.size() < kMinObjectsToSplit) return std::nullopt;
+    std::vector<uint32_t> candidates;
+    for (uint32_t id : objs)
+      if (object_plane_[id]) candidates.push_back(id);
+    const size_t c = std::min<size_t>(candidates.size(), 8);
+    std::optional<BspPlane> best;
+    size_t best_side = objs.size();
+    for (size_t ci = 0; ci < c; ++ci) {
+      const BspPlane& plane = planes_[candidates[(2 * ci + 1) * candidates.size() / (2 * c)]];
+      size_t below = 0, above = 0;
+      for (uint32_t id : objs) {
+        bool lower, upper;
+        object_sides(id, plane, lower, upper);
+        below += lower, above += upper;
+      }
+      if (std::max(below, above) < best_side) best = plane, best_side = std::max(below, above);
+    }
+    return best;
   }
 
   /// Index in `list` of the fragment whose plane splits the node.
@@ -175,11 +234,12 @@ class Builder {
     return best;
   }
 
-  /// Splits the node by the plane of fragment `splitter`: fragments in the plane stay at the node,
-  /// the others go below or above it, cut in two when they straddle it.
-  void split(Job& job, uint32_t index, size_t splitter, std::vector<Job>& jobs) {
+  /// Splits the node by `plane`, that of fragment `splitter` (or of a moving object when
+  /// `splitter` is SIZE_MAX): fragments in the plane stay at the node, the others go below or
+  /// above it, cut in two when they straddle it; objects go to every side they reach.
+  void split(Job& job, uint32_t index, const BspPlane plane, size_t splitter,
+             std::vector<Job>& jobs) {
     const FragList& list = job.list;
-    const BspPlane plane = planes_[list.frags[splitter].prim];
     FragList below, above;
     std::vector<uint32_t> coplanar;
     for (size_t i = 0; i < list.frags.size(); ++i) {
@@ -257,18 +317,22 @@ class Builder {
   /// Which sides of `plane` object `id` reaches beyond the tolerance; an object within the
   /// tolerance of the plane on both sides goes above only (the regions overlap there).
   void object_sides(uint32_t id, const BspPlane& plane, bool& lower, bool& upper) const {
-    double lo, hi;
-    if (prims_.kind(id) == PrimKind::kSphere) {
-      const SphereData& s = prims_.sphere(id);
-      const double c = plane.distance(Vec3d(s.center));
-      lo = c - double(s.radius), hi = c + double(s.radius);
-    } else {
-      Vec3d poly[4];
-      const int n = prim_polygon(prims_, id, poly);
-      lo = hi = plane.distance(poly[0]);
-      for (int k = 1; k < n; ++k) {
-        const double s = plane.distance(poly[k]);
-        lo = std::min(lo, s), hi = std::max(hi, s);
+    // The signed distance of every point is linear in the vertices (centre and radius), and
+    // these are linear in time for a moving object: its extremes are at the ends' vertices.
+    double lo = INFINITY, hi = -INFINITY;
+    for (const bool end : {false, true}) {
+      if (end && !prims_.moving(id)) break;
+      if (prims_.kind(id) == PrimKind::kSphere) {
+        const SphereData& s = end ? prims_.sphere_end(id) : prims_.sphere(id);
+        const double c = plane.distance(Vec3d(s.center));
+        lo = std::min(lo, c - double(s.radius)), hi = std::max(hi, c + double(s.radius));
+      } else {
+        Vec3d poly[4];
+        const int n = end_polygon(prims_, id, end, poly);
+        for (int k = 0; k < n; ++k) {
+          const double s = plane.distance(poly[k]);
+          lo = std::min(lo, s), hi = std::max(hi, s);
+        }
       }
     }
     lower = lo < -eps_;
@@ -294,10 +358,11 @@ class Builder {
   const PrimitiveSet& prims_;
   const BspBuildParams params_;
   const BspFragmentSink* sink_;
-  double eps_ = 0;                              ///< build tolerance (absolute)
-  std::vector<BspPlane> planes_;                ///< plane of each planar primitive
-  size_t made_ = 0;                             ///< fragments and object references made so far
-  std::vector<double> dist_;                    ///< scratch: vertex distances
+  double eps_ = 0;                  ///< build tolerance (absolute)
+  std::vector<BspPlane> planes_;    ///< plane of each planar primitive
+  std::vector<char> object_plane_;  ///< 1 for a moving polygon with a mid-motion plane in planes_
+  size_t made_ = 0;                 ///< fragments and object references made so far
+  std::vector<double> dist_;        ///< scratch: vertex distances
   std::vector<Vec3d> below_poly_, above_poly_;  ///< scratch: split parts
   BspBuildResult out_;
 };

@@ -88,9 +88,13 @@ using BspFragmentSink =
     std::function<void(uint32_t prim, uint32_t node, std::span<const Vec3d> polygon)>;
 
 /// Builds the BSP tree over `prims`, skipping primitives with empty bounds. Triangles and
-/// parallelograms are clipped into fragments; spheres and degenerate polygons are objects pushed
-/// to every side they reach and stored in leaves. Deterministic for given parameters. Throws Error
-/// when more than params.max_fragments fragments and object references would be made.
+/// parallelograms are clipped into fragments; spheres, degenerate polygons and moving primitives
+/// (which have no fixed plane) are objects pushed to every side they reach (a moving one: at any
+/// time of its interval) and stored in leaves. A node left with objects only is split further by
+/// the mid-motion plane of one of its moving polygons when that separates them (at least 8
+/// objects, best of 8 candidates), so a moving mesh is not one leaf. Deterministic for given
+/// parameters. Throws Error when more than params.max_fragments fragments and object references
+/// would be made.
 BspBuildResult build_bsp(const PrimitiveSet& prims, const BspBuildParams& params,
                          const BspFragmentSink* sink = nullptr);
 

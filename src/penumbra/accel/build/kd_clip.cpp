@@ -86,8 +86,10 @@ Polygon make_polygon(std::span<const Vec3> pts) {
   return poly;
 }
 
-/// The primitive as a polygon (triangles and parallelograms); false for spheres.
+/// The primitive as a polygon (triangles and parallelograms); false for spheres and moving
+/// primitives, which have no fixed polygon: they are bounded by their (swept) boxes instead.
 bool prim_polygon(const PrimitiveSet& prims, uint32_t id, Polygon& poly) {
+  if (prims.moving(id)) return false;
   switch (prims.kind(id)) {
     case PrimKind::kTriangle: {
       const Vec3* v = prims.triangle(id);

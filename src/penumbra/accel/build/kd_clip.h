@@ -33,12 +33,13 @@ inline KdSide classify_box(const Bounds3& b, int axis, float pos, bool planar_be
 Bounds3 clip_polygon_bounds(std::span<const Vec3> poly, const Bounds3& box);
 
 /// Bounds of the part of primitive `id` inside `box`: the clipped polygon of a triangle or
-/// parallelogram, the sphere's box intersected with `box`. Empty when they do not meet.
+/// parallelogram, the box of a sphere or of a moving primitive (over its whole time interval)
+/// intersected with `box`. Empty when they do not meet.
 Bounds3 clip_prim_bounds(const PrimitiveSet& prims, uint32_t id, const Bounds3& box);
 
 /// Splits a primitive whose current bounds `box` straddle plane (axis, pos): the bounds of its
-/// parts below and above the plane (either may be empty). With `clip` false (or for spheres),
-/// `box` is just cut at the plane.
+/// parts below and above the plane (either may be empty). With `clip` false (or for spheres and
+/// moving primitives), `box` is just cut at the plane.
 void split_prim_bounds(const PrimitiveSet& prims, uint32_t id, const Bounds3& box, int axis,
                        float pos, bool clip, Bounds3& below, Bounds3& above);
 

@@ -111,7 +111,17 @@ bool quad_overlap(Vec3 p, Vec3 e1, Vec3 e2, const PaddedBox& pb) {
   return triangle_overlap(a, b, c, pb) || triangle_overlap(a, c, d, pb);
 }
 
+/// The box `b` against the padded box.
+bool box_overlap(const Bounds3& b, const PaddedBox& pb) {
+  for (int i = 0; i < 3; ++i)
+    if (b.lo[i] > pb.hi[i] || b.hi[i] < pb.lo[i]) return false;
+  return true;
+}
+
 bool prim_overlap(const PrimitiveSet& prims, uint32_t id, const PaddedBox& pb) {
+  // A moving primitive: its box over the whole time interval (conservative; the exact swept
+  // volume of a moving triangle is not convex in general and is not worth its cost here).
+  if (prims.moving(id)) return box_overlap(prims.prim_bounds(id), pb);
   switch (prims.kind(id)) {
     case PrimKind::kTriangle: {
       const Vec3* v = prims.triangle(id);

@@ -36,7 +36,9 @@ bool sphere_box_overlap(Vec3 center, float radius, const Bounds3& box);
 /// formed in double, so the diagonal is shared exactly).
 bool quad_box_overlap(Vec3 p, Vec3 e1, Vec3 e2, const Bounds3& box);
 
-/// Primitive `id` of `prims` (any kind) against `box`; the primitive must have finite bounds.
+/// Primitive `id` of `prims` (any kind) against `box`; the primitive must have finite bounds. A
+/// moving primitive is tested by its bounds over the whole time interval (prim_bounds), so it is
+/// stored in every cell that its swept box reaches.
 bool prim_box_overlap(const PrimitiveSet& prims, uint32_t id, const Bounds3& box);
 
 /// As above, with the primitive's bounds `prim_box` at hand: answered from the boxes alone when

@@ -13,6 +13,7 @@ PinholeCamera::PinholeCamera(const SceneParams& params, int width, int height) {
   const Vec3 up = params.get_vec3("up", {0, 1, 0});
   const float vfov = params.get_float("vfov", 45.0f);
   if (!(vfov > 0.0f && vfov < 180.0f)) params.fail("vfov", "must lie in (0, 180) degrees");
+  shutter_ = Shutter::read(params);
   params.check_all_used();
   try {
     init(position, target, up, vfov, width, height);
@@ -49,7 +50,7 @@ Ray PinholeCamera::generate_ray(const CameraSample& s) const {
   Ray r;
   r.o = eye_;
   r.d = normalize(to_world(camera_direction(s.film)));
-  r.time = s.time;
+  r.time = shutter_.time(s.time);
   return r;
 }
 

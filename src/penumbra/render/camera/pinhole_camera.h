@@ -2,6 +2,7 @@
 /// The pinhole camera: every ray starts at the eye.
 #include "penumbra/core/transform.h"
 #include "penumbra/render/camera/camera.h"
+#include "penumbra/render/camera/shutter.h"
 #include "penumbra/scene/scene_params.h"
 
 namespace penumbra {
@@ -9,7 +10,8 @@ namespace penumbra {
 /// Pinhole camera with a vertical field of view. Film point (sx, sy) in [0,W)x[0,H) maps to the
 /// direction normalize(forward + t (2 sx/W - 1) a right + t (1 - 2 sy/H) up), t = tan(vfov/2),
 /// a = W/H, with right = forward x up: the convention of the Cornell box reference data.
-/// Parameters: position, look_at, up (default (0,1,0)), vfov (degrees, default 45).
+/// Parameters: position, look_at, up (default (0,1,0)), vfov (degrees, default 45), shutter
+/// ([open, close] in scene time, default [0, 0]: see Shutter).
 class PinholeCamera final : public Camera {
  public:
   PinholeCamera(const SceneParams& params, int width, int height);
@@ -21,11 +23,16 @@ class PinholeCamera final : public Camera {
   /// Camera-space vector to world space.
   Vec3 to_world(Vec3 v) const { return right_ * v.x + up_ * v.y + forward_ * v.z; }
   Vec3 eye() const { return eye_; }
+  /// The shutter interval that ray times are drawn from.
+  const Shutter& shutter() const { return shutter_; }
+  /// Replaces the shutter (cameras built from their placement start with [0, 0]).
+  void set_shutter(const Shutter& s) { shutter_ = s; }
 
  private:
   void init(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width, int height);
 
   Vec3 eye_, forward_, right_, up_;
+  Shutter shutter_;
   float tan_half_ = 1, aspect_ = 1, inv_w_ = 1, inv_h_ = 1;
 };
 

@@ -28,7 +28,7 @@ Ray ThinLensCamera::generate_ray(const CameraSample& s) const {
   Ray r;
   r.o = pinhole_.eye() + pinhole_.to_world(lens);
   r.d = normalize(pinhole_.to_world(focus - lens));
-  r.time = s.time;
+  r.time = pinhole_.shutter().time(s.time);
   return r;
 }
 

@@ -10,7 +10,8 @@ namespace penumbra {
 /// through the point of the focal plane that the pinhole ray of the same film position meets, so
 /// points on the focal plane are sharp and a point at depth z blurs into a disc of diameter
 /// aperture_radius |1/z - 1/focus_distance| H / tan(vfov/2) pixels (the circle of confusion).
-/// Parameters: those of pinhole, plus aperture_radius (default 0.1) and focus_distance (required).
+/// Parameters: those of pinhole (shutter included), plus aperture_radius (default 0.1) and
+/// focus_distance (required).
 class ThinLensCamera final : public Camera {
  public:
   ThinLensCamera(const SceneParams& params, int width, int height);
