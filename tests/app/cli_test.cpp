@@ -9,6 +9,7 @@
 #include <chrono>
 #include <thread>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,8 @@
 #include <string>
 
 #include <nlohmann/json.hpp>
+
+#include "penumbra/image/pfm.h"
 
 namespace penumbra {
 namespace {
@@ -136,7 +139,8 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   // Brute force traces the 1024 x 1024 primary rays too: only over the 38 Cornell triangles.
   for (const std::string input : {scene("cornell-box.json") + " --accel bvh,brute",
                                   scene("meshes/bunny.obj") + " --accel bvh,bvh:sweep"}) {
-    ASSERT_EQ(run("accel-bench " + input + " --threads 1 --rays 2000 --json " + path("bench.json")),
+    ASSERT_EQ(run("accel-bench " + input + " --threads 1 --repeat 1 --rays 2000 --json " +
+                  path("bench.json")),
               0)
         << err_;
     const auto rows = nlohmann::json::parse(slurp(path("bench.json")));
@@ -168,12 +172,38 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   EXPECT_NE(err_.find("valid:"), std::string::npos) << err_;
 }
 
+// --repeat N takes medians of N runs; with Embree each structure also gets the median ratio of
+// its incoherent throughput to Embree's over runs paired with one of Embree's.
+TEST_F(CliTest, AccelBenchRepeatsAndPairsRunsWithEmbree) {
+  ASSERT_EQ(run("accel-bench " + scene("cornell-box.json") +
+                " --accel bvh --threads 1 --repeat 3 --rays 500 --json " + path("r.json")),
+            0)
+      << err_;
+  EXPECT_NE(out_.find("medians of 3 run(s)"), std::string::npos) << out_;
+  EXPECT_NE(out_.find("x embree"), std::string::npos) << out_;
+  const auto rows = nlohmann::json::parse(slurp(path("r.json")));
+  const bool embree = rows.size() == 2;
+  for (const auto& row : rows) {
+    const auto& r = row["runs"][0];
+    // Embree's own row has no ratio; a structure has all three exactly when Embree ran.
+    const bool expect_ratio = embree && row["accel"] != "embree";
+    for (const char* key : {"primary_vs_embree", "incoherent_vs_embree", "occlusion_vs_embree"}) {
+      EXPECT_EQ(r.contains(key), expect_ratio) << key << " in " << row.dump();
+      if (expect_ratio) EXPECT_GT(r[key].get<double>(), 0.0) << key;
+    }
+  }
+  for (const char* bad : {"0", "x", "101"})
+    EXPECT_NE(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --repeat " + bad), 0)
+        << bad;
+}
+
 // With several thread counts accel-bench prints one table with a group of throughput columns per
 // count (sorted, duplicates merged), builds on the largest, and writes one run per count.
 TEST_F(CliTest, AccelBenchMeasuresEveryThreadCountInOneTable) {
-  ASSERT_EQ(run("accel-bench " + scene("cornell-box.json") +
-                " --accel bvh,bvh:median --threads 2,1,2 --rays 500 --json " + path("t.json")),
-            0)
+  ASSERT_EQ(
+      run("accel-bench " + scene("cornell-box.json") +
+          " --accel bvh,bvh:median --threads 2,1,2 --repeat 1 --rays 500 --json " + path("t.json")),
+      0)
       << err_;
   for (const char* column :
        {"build ms", "MiB", "nodes", "depth", "refs/prim", "primary", "incoher.", "occlus.",
@@ -189,13 +219,51 @@ TEST_F(CliTest, AccelBenchMeasuresEveryThreadCountInOneTable) {
     EXPECT_EQ(row["runs"][1]["threads"], 2);
   }
   // The default is 1 and all cores; bad counts are errors naming the item.
-  ASSERT_EQ(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --rays 100"), 0) << err_;
+  ASSERT_EQ(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --repeat 1 --rays 100"),
+            0)
+      << err_;
   EXPECT_NE(out_.find("1 thread, Mrays/s"), std::string::npos) << out_;
   for (const char* bad : {"0", "1,x", "1,", "-2", "5000"}) {
     EXPECT_NE(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --threads " + bad), 0)
         << bad;
     EXPECT_NE(err_.find("is not a thread count"), std::string::npos) << bad << ": " << err_;
   }
+}
+
+// The scene of every distribution effect (docs/rendering.md, "All effects together") renders
+// from the command line with sane brightness. Closing its shutter changes only what the moving
+// ball reaches (its smear, shadow and reflections): the time is a sample dimension of its own, so
+// every other pixel, the sky above the horizon included, stays bit-identical.
+TEST_F(CliTest, DistributionSceneBlursOnlyWhatMoves) {
+  const std::string args = " --resolution 64x48 --spp 4 --threads 2 -q -o ";
+  ASSERT_EQ(run("render " + scene("distribution.json") + args + path("open.pfm")), 0) << err_;
+  std::string text = slurp(scene("distribution.json"));
+  const std::string shutter = "\"shutter\": [0, 1]";
+  const auto at = text.find(shutter);
+  ASSERT_NE(at, std::string::npos);
+  write("still.json", text.replace(at, shutter.size(), "\"shutter\": [0, 0]"));
+  ASSERT_EQ(run("render " + path("still.json") + args + path("still.pfm")), 0) << err_;
+  const RgbImage open = read_pfm(path("open.pfm")), still = read_pfm(path("still.pfm"));
+  ASSERT_EQ(open.width(), 64);
+  ASSERT_EQ(open.height(), 48);
+  double sum = 0;
+  int differ = 0, differ_in_sky = 0;
+  for (int y = 0; y < open.height(); ++y)
+    for (int x = 0; x < open.width(); ++x) {
+      const Rgb a = open.at(x, y), b = still.at(x, y);
+      ASSERT_TRUE(std::isfinite(a.r) && std::isfinite(a.g) && std::isfinite(a.b)) << x << "," << y;
+      sum += a.luminance();
+      if (a.r != b.r || a.g != b.g || a.b != b.b) {
+        ++differ;
+        if (y < open.height() / 4) ++differ_in_sky;
+      }
+    }
+  const double mean = sum / double(open.size());
+  EXPECT_GT(mean, 0.05);  // 0.18 measured
+  EXPECT_LT(mean, 1.0);
+  EXPECT_GT(differ, int(open.size() / 100));  // 6.5% measured: the smear, shadow, reflections
+  EXPECT_LT(differ, int(open.size() / 4));
+  EXPECT_EQ(differ_in_sky, 0);
 }
 
 // Ctrl-C stops the render, keeps the finished tiles in a complete image file and exits with 130.

@@ -52,9 +52,10 @@ KdTree::KdTree(const ParamList& params) {
   params_.criterion = criterion == "sah"      ? KdCriterion::kSah
                       : criterion == "median" ? KdCriterion::kMedian
                                               : KdCriterion::kGap;
-  params_.traversal_cost = float(params.get_real("ct", 1.0, 0.0, 1000.0));
-  params_.intersect_cost = float(params.get_real("ci", 0.2, 0.01, 1000.0));
-  params_.empty_bonus = float(params.get_real("empty_bonus", 0.1, 0.0, 0.99));
+  const KdBuildParams defaults;
+  params_.traversal_cost = float(params.get_real("ct", defaults.traversal_cost, 0.0, 1000.0));
+  params_.intersect_cost = float(params.get_real("ci", defaults.intersect_cost, 0.01, 1000.0));
+  params_.empty_bonus = float(params.get_real("empty_bonus", defaults.empty_bonus, 0.0, 0.99));
   params_.max_leaf =
       int(params.get_int("leaf", params_.criterion == KdCriterion::kSah ? 0 : 8, 0, 1024));
   params_.max_depth = int(params.get_int("depth", 0, 1, kKdMaxDepth));

@@ -118,6 +118,8 @@ class TriangleBlocks {
   size_t bytes() const { return blocks_.capacity() * sizeof(TriangleBlock); }
   /// Number of blocks.
   size_t size() const { return blocks_.size(); }
+  /// Block `i` (for prefetching).
+  const TriangleBlock* block(uint32_t i) const { return &blocks_[i]; }
 
   /// Tests the leaf of `count` triangles starting at block `first` on (tmin, hit.t); updates
   /// `hit` exactly as testing them one by one in order with the scalar test would.

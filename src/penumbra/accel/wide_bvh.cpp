@@ -196,6 +196,17 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
   const int nx = pr.neg[0], ny = 2 + pr.neg[1], nz = 4 + pr.neg[2];
   const F t0 = F::broadcast(pr.ray.tmin);
   const BlockRay block_ray(pr);
+  // A deferred child will often be visited: start loading its first line (a node's boxes, or a
+  // leaf's first block) while the nearer ones are traversed.
+  const auto prefetch_child = [&](uint32_t c, uint32_t count) {
+    if constexpr (kTriangles) {
+      if (count) {
+        __builtin_prefetch(blocks_.block(c));
+        return;
+      }
+    }
+    if (count == 0) __builtin_prefetch(&nodes_[c]);
+  };
 
   StackEntry stack[kBvhStackSize * (W - 1) + W];
   int sp = 0;
@@ -228,6 +239,7 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
         for (mask &= mask - 1; mask; mask &= mask - 1) {
           const int i = std::countr_zero(mask);
           stack[sp++] = {n.child[i], n.count[i], 0.0f};
+          prefetch_child(n.child[i], n.count[i]);
         }
         child = n.child[i0], count = n.count[i0];
         continue;
@@ -246,6 +258,7 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
         const bool swap = dist[i1] < dist[i0];
         const int a = swap ? i1 : i0, b = swap ? i0 : i1;
         stack[sp++] = {n.child[b], n.count[b], dist[b]};
+        prefetch_child(n.child[b], n.count[b]);
         child = n.child[a], count = n.count[a];
         continue;
       }
@@ -253,10 +266,13 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
       const int base = sp;
       stack[sp++] = {n.child[i0], n.count[i0], dist[i0]};
       stack[sp++] = {n.child[i1], n.count[i1], dist[i1]};
+      prefetch_child(n.child[i0], n.count[i0]);
+      prefetch_child(n.child[i1], n.count[i1]);
       do {
         const int i = std::countr_zero(mask);
         mask &= mask - 1;
         stack[sp++] = {n.child[i], n.count[i], dist[i]};
+        prefetch_child(n.child[i], n.count[i]);
       } while (mask);
       for (int i = base + 1; i < sp; ++i) {  // insertion sort, descending by distance
         const StackEntry e = stack[i];

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -103,33 +104,68 @@ std::vector<int> parse_thread_counts(const std::string& text, int all_threads) {
   return counts;
 }
 
-/// Runs the three ray sets through `intersect` and `occluded` at each of `threads`, and compares
-/// the incoherent closest hits (the same at every thread count) with the reference if there is one.
+/// One run of the three ray sets through `intersect` and `occluded` at `threads` threads; the
+/// incoherent closest hits go to `hits`.
 template <class Intersect, class Occluded>
-void measure(BenchRow& row, const RaySets& rays, const std::vector<int>& threads,
-             const Intersect& intersect, const Occluded& occluded, std::vector<Hit>* keep) {
-  std::vector<Hit> hits(rays.incoherent.size());
+BenchRates run_once(const RaySets& rays, int threads, const Intersect& intersect,
+                    const Occluded& occluded, std::vector<Hit>& hits) {
+  const ThreadLimit limit(threads);
+  BenchRates rates;
+  rates.threads = threads;
+  rates.primary = throughput(rays.primary, [&](const Ray& r, size_t) {
+    Hit h;
+    intersect(r, h);
+  });
+  // Fresh hits each run: a closest hit query starts from an empty record.
+  std::fill(hits.begin(), hits.end(), Hit{});
+  rates.incoherent =
+      throughput(rays.incoherent, [&](const Ray& r, size_t i) { intersect(r, hits[i]); });
+  rates.occlusion = throughput(rays.incoherent, [&](const Ray& r, size_t) { occluded(r); });
+  return rates;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// Measures a structure (or Embree, with `embree` empty) `repeat` times at each thread count:
+/// medians of the rates, and with `embree` given, each run preceded by one of Embree's, the
+/// medians of the paired ratios. Compares the incoherent closest hits with the reference if
+/// there is one, and keeps them in `keep` if given.
+template <class Intersect, class Occluded>
+void measure(BenchRow& row, const RaySets& rays, const std::vector<int>& threads, int repeat,
+             const Intersect& intersect, const Occluded& occluded,
+             const std::function<BenchRates(int, std::vector<Hit>&)>& embree,
+             std::vector<Hit>* keep) {
+  std::vector<Hit> hits(rays.incoherent.size()), scratch;
+  if (embree) scratch.resize(rays.incoherent.size());
   for (const int t : threads) {
-    const ThreadLimit limit(t);
+    std::vector<double> p, i, o, pr, ir, orr;
+    for (int k = 0; k < repeat; ++k) {
+      std::optional<BenchRates> e;
+      if (embree) e = embree(t, scratch);
+      const BenchRates r = run_once(rays, t, intersect, occluded, hits);
+      p.push_back(r.primary), i.push_back(r.incoherent), o.push_back(r.occlusion);
+      if (e)
+        pr.push_back(r.primary / e->primary), ir.push_back(r.incoherent / e->incoherent),
+            orr.push_back(r.occlusion / e->occlusion);
+    }
     BenchRates rates;
     rates.threads = t;
-    rates.primary = throughput(rays.primary, [&](const Ray& r, size_t) {
-      Hit h;
-      intersect(r, h);
-    });
-    // Fresh hits each run: a closest hit query starts from an empty record.
-    std::fill(hits.begin(), hits.end(), Hit{});
-    rates.incoherent =
-        throughput(rays.incoherent, [&](const Ray& r, size_t i) { intersect(r, hits[i]); });
-    rates.occlusion = throughput(rays.incoherent, [&](const Ray& r, size_t) { occluded(r); });
+    rates.primary = median(p), rates.incoherent = median(i), rates.occlusion = median(o);
+    if (!ir.empty())
+      rates.primary_vs_embree = median(pr), rates.incoherent_vs_embree = median(ir),
+      rates.occlusion_vs_embree = median(orr);
     row.rates.push_back(rates);
   }
   if (!rays.reference.empty()) {
     size_t mismatches = 0, ties = 0;
-    for (size_t i = 0; i < hits.size(); ++i) {
-      if (differs(hits[i], rays.reference[i]))
+    for (size_t k = 0; k < hits.size(); ++k) {
+      if (differs(hits[k], rays.reference[k]))
         ++mismatches;
-      else if (hits[i].prim != rays.reference[i].prim)
+      else if (hits[k].prim != rays.reference[k].prim)
         ++ties;
     }
     row.mismatches = mismatches, row.ties = ties;
@@ -155,6 +191,10 @@ void add_accel_bench_command(CLI::App& app) {
   cmd->add_option("--json", args->json, "Also write the results to this JSON file");
   cmd->add_option("--rays", args->rays, "Incoherent (and occlusion) rays (default 1000000)")
       ->check(CLI::Range(size_t(1), size_t(1) << 30));
+  cmd->add_option("--repeat", args->repeat,
+                  "Runs per measurement (default 3): rates are medians; each run of a structure "
+                  "follows one of Embree's, and 'x embree' is the median of those ratios")
+      ->check(CLI::Range(1, 100));
   cmd->callback([args] { run_accel_bench(*args); });
 }
 
@@ -233,19 +273,24 @@ void run_accel_bench(const AccelBenchArgs& args) {
   limit.reset();
   std::vector<BenchRow> rows;
   const double triangles = double(mesh.triangle_count());
+  std::optional<EmbreeScene> embree;
+  std::function<BenchRates(int, std::vector<Hit>&)> embree_run;
+  const auto embree_intersect = [&](const Ray& r, Hit& h) { return embree->intersect(r, h); };
+  const auto embree_occluded = [&](const Ray& r) { return embree->occluded(r); };
   if (have_embree()) {
     BenchRow row;
     row.accel = "embree";
-    std::optional<EmbreeScene> embree;
     {
       const ThreadLimit build_limit(build_threads);
       embree.emplace(mesh, build_threads);
     }
     row.build_ms = embree->build_ms(), row.bytes = embree->bytes();
-    measure(
-        row, rays, threads, [&](const Ray& r, Hit& h) { return embree->intersect(r, h); },
-        [&](const Ray& r) { return embree->occluded(r); }, &rays.reference);
+    measure(row, rays, threads, args.repeat, embree_intersect, embree_occluded, {},
+            &rays.reference);
     rows.push_back(row);
+    embree_run = [&](int t, std::vector<Hit>& hits) {
+      return run_once(rays, t, embree_intersect, embree_occluded, hits);
+    };
   }
   for (auto& accel : accels) {
     BenchRow row;
@@ -260,12 +305,13 @@ void run_accel_bench(const AccelBenchArgs& args) {
     row.bytes = st.bytes, row.nodes = st.nodes, row.depth = st.max_depth;
     row.refs_per_prim = double(st.prim_refs) / triangles;
     measure(
-        row, rays, threads, [&](const Ray& r, Hit& h) { return accel->intersect(r, h); },
-        [&](const Ray& r) { return accel->occluded(r); }, nullptr);
+        row, rays, threads, args.repeat,
+        [&](const Ray& r, Hit& h) { return accel->intersect(r, h); },
+        [&](const Ray& r) { return accel->occluded(r); }, embree_run, nullptr);
     rows.push_back(row);
     accel.reset();  // free its memory before the next build
   }
-  print_bench_table(rows, build_threads);
+  print_bench_table(rows, build_threads, args.repeat);
   if (!args.json.empty())
     write_bench_json(args.json, rows, args.input, mesh.triangle_count(), build_threads);
 }

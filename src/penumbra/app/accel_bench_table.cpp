@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "penumbra/core/error.h"
+#include "penumbra/image/image_io.h"
 
 namespace penumbra::app {
 
@@ -13,7 +14,7 @@ namespace {
 
 /// Width of a throughput column, and of a group of three with their separators.
 constexpr int kRateWidth = 8;
-constexpr int kGroupWidth = 3 * (kRateWidth + 1);
+constexpr int kGroupWidth = 4 * (kRateWidth + 1);
 
 std::string thread_label(int threads) {
   return fmt::format("{} thread{}", threads, threads == 1 ? "" : "s");
@@ -26,7 +27,7 @@ std::string or_dash(const std::optional<T>& v, const char* format) {
 
 }  // namespace
 
-void print_bench_table(const std::vector<BenchRow>& rows, int build_threads) {
+void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat) {
   if (rows.empty()) return;
   // Group titles over the throughput columns, then the column names.
   const std::string lead =
@@ -35,8 +36,8 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads) {
                                                  "build ms", "MiB", "nodes", "depth", "refs/prim");
   for (const BenchRates& r : rows.front().rates) {
     titles += fmt::format("|{:^{}}", thread_label(r.threads) + ", Mrays/s", kGroupWidth);
-    names += fmt::format("|{:>{}} {:>{}} {:>{}} ", "primary", kRateWidth, "incoher.", kRateWidth,
-                         "occlus.", kRateWidth);
+    names += fmt::format("|{:>{}} {:>{}} {:>{}} {:>{}} ", "primary", kRateWidth, "incoher.",
+                         kRateWidth, "occlus.", kRateWidth, "x embree", kRateWidth);
   }
   fmt::print("{}|\n{}| {:>12}\n", titles, names, "vs embree");
   for (const BenchRow& r : rows) {
@@ -44,18 +45,21 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads) {
                                    r.build_ms, double(r.bytes) / (1 << 20), or_dash(r.nodes, "{}"),
                                    or_dash(r.depth, "{}"), or_dash(r.refs_per_prim, "{:.2f}"));
     for (const BenchRates& t : r.rates)
-      line += fmt::format("|{:>{}.2f} {:>{}.2f} {:>{}.2f} ", t.primary, kRateWidth, t.incoherent,
-                          kRateWidth, t.occlusion, kRateWidth);
+      line += fmt::format("|{:>{}.2f} {:>{}.2f} {:>{}.2f} {:>{}} ", t.primary, kRateWidth,
+                          t.incoherent, kRateWidth, t.occlusion, kRateWidth,
+                          or_dash(t.incoherent_vs_embree, "{:.2f}"), kRateWidth);
     const std::string cmp =
         r.mismatches ? fmt::format("{} ({} ties)", *r.mismatches, r.ties.value_or(0)) : "-";
     fmt::print("{}| {:>12}\n", line, cmp);
   }
   fmt::print(
-      "(build ms at {}; refs/prim: leaf references per triangle. Mrays/s: primary = closest hits\n"
-      " of the camera's rays, incoher. = closest hits of random rays, occlus. = any hit of the\n"
-      " same rays. 'vs embree': incoherent closest hits differing from Embree's, hit vs miss or t\n"
-      " beyond 1e-4 relative; ties: same t, another triangle)\n",
-      thread_label(build_threads));
+      "(build ms at {}; refs/prim: leaf references per triangle. Mrays/s, medians of {} run(s):\n"
+      " primary = closest hits of the camera's rays, incoher. = closest hits of random rays,\n"
+      " occlus. = any hit of the same rays. x embree: incoherent throughput over Embree's, median\n"
+      " of the ratios of runs each right after one of Embree's. 'vs embree': incoherent closest\n"
+      " hits differing from Embree's, hit vs miss or t beyond 1e-4 relative; ties: same t,\n"
+      " another triangle)\n",
+      thread_label(build_threads), repeat);
 }
 
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
@@ -63,11 +67,17 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
   nlohmann::json out = nlohmann::json::array();
   for (const BenchRow& r : rows) {
     nlohmann::json runs = nlohmann::json::array();
-    for (const BenchRates& t : r.rates)
-      runs.push_back({{"threads", t.threads},
-                      {"primary_mrays", t.primary},
-                      {"incoherent_mrays", t.incoherent},
-                      {"occlusion_mrays", t.occlusion}});
+    for (const BenchRates& t : r.rates) {
+      nlohmann::json run = {{"threads", t.threads},
+                            {"primary_mrays", t.primary},
+                            {"incoherent_mrays", t.incoherent},
+                            {"occlusion_mrays", t.occlusion}};
+      if (t.incoherent_vs_embree)
+        run["primary_vs_embree"] = *t.primary_vs_embree,
+        run["incoherent_vs_embree"] = *t.incoherent_vs_embree,
+        run["occlusion_vs_embree"] = *t.occlusion_vs_embree;
+      runs.push_back(run);
+    }
     nlohmann::json o = {{"accel", r.accel},
                         {"mesh", mesh},
                         {"triangles", triangles},
@@ -82,9 +92,12 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
     if (r.ties) o["embree_ties"] = *r.ties;
     out.push_back(o);
   }
-  std::ofstream f(path);
-  f << out.dump(2) << "\n";
-  if (!f) throw Error(fmt::format("{}: cannot write", path));
+  write_atomically(path, [&](const std::string& temp) {
+    std::ofstream f(temp);
+    f << out.dump(2) << "\n";
+    f.close();
+    if (!f) throw Error(fmt::format("{}: cannot write", temp));
+  });
 }
 
 }  // namespace penumbra::app

@@ -14,6 +14,8 @@ struct BenchRates {
   double primary = 0;     ///< closest hits of the pinhole camera's rays
   double incoherent = 0;  ///< closest hits of random rays
   double occlusion = 0;   ///< any hit of the same random rays
+  /// Median over paired runs of this rate / Embree's (absent without Embree, and for Embree).
+  std::optional<double> primary_vs_embree, incoherent_vs_embree, occlusion_vs_embree;
 };
 
 /// The measurements of one structure (or of Embree).
@@ -29,8 +31,9 @@ struct BenchRow {
 };
 
 /// Prints the table: build ms (at `build_threads`), MiB, nodes, depth, refs/prim, then primary,
-/// incoherent and occlusion Mrays/s for each thread count, then the comparison with Embree.
-void print_bench_table(const std::vector<BenchRow>& rows, int build_threads);
+/// incoherent and occlusion Mrays/s and the incoherent ratio to Embree for each thread count,
+/// then the comparison of hits with Embree's; `repeat` runs gave each median.
+void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat);
 
 /// Writes `rows` to `path` as a JSON array of objects (keys in docs/accel.md); throws Error when
 /// the file cannot be written.
