@@ -95,7 +95,7 @@ TEST(KdTree, ParametersParseWithDefaults) {
   EXPECT_EQ(kd.name(), "kdtree:sah");
   EXPECT_EQ(kd.params().criterion, KdCriterion::kSah);
   EXPECT_FLOAT_EQ(kd.params().traversal_cost, 1.0f);
-  EXPECT_FLOAT_EQ(kd.params().intersect_cost, 0.1f);
+  EXPECT_FLOAT_EQ(kd.params().intersect_cost, 0.4f);
   EXPECT_FLOAT_EQ(kd.params().empty_bonus, 0.1f);
   EXPECT_EQ(kd.params().max_leaf, 0);
   EXPECT_EQ(kd.params().max_depth, 0);

@@ -83,9 +83,12 @@ void KdTree::build(const PrimitiveSet& prims) {
     refs.push_back({b, id});
   }
   const size_t n = refs.size();
+  // Triangle leaves are tested four at a time (TriangleBlocks): let the SAH count blocks.
+  KdBuildParams sah_params = params_;
+  if (prims.all_triangles()) sah_params.block_shift = 2;
   if (n > 0) {
     KdSubtree tree = params_.criterion == KdCriterion::kSah
-                         ? build_kd_sah(prims, std::move(refs), bounds_, params_)
+                         ? build_kd_sah(prims, std::move(refs), bounds_, sah_params)
                          : build_kd_simple(prims, std::move(refs), bounds_, params_);
     nodes_.assign(tree.nodes.begin(), tree.nodes.end());
     stats_.leaves = tree.leaves;

@@ -12,7 +12,9 @@
 ///   sah | median | gap   the split criterion (default sah; see kd_sah_builder.h and
 ///                        kd_simple_builder.h)
 ///   ct=X           cost of traversing an inner node, 0..1000 (default 1)
-///   ci=X           cost of one primitive test, 0.01..1000 (default 0.1); only ci / ct matters
+///   ci=X           cost of one leaf test, 0.01..1000 (default 0.4): a block of four triangles
+///                  in triangle-only sets (the SAH counts blocks), else one primitive; only
+///                  ci / ct matters
 ///   empty_bonus=X  a split with an empty side costs (1 - X) times its SAH cost, 0..0.99
 ///                  (default 0.1; Wald and Havran's lambda = 0.8 is empty_bonus=0.2)
 ///   leaf=N         nodes with at most N references become leaves, 0..1024 (default 0 with sah,

@@ -94,12 +94,7 @@ Hit2 KdTree2D::shoot(const Ray2& ray, TraceLog* trace) const {
 }
 
 Stats2D KdTree2D::stats() const {
-  Stats2D s;
-  s.nodes = tree_.nodes.size();
-  s.leaves = s.nodes - tree_.internal;
-  s.depth = tree_.depth;
-  s.fragments = tree_.refs.size();
-  s.build_ms = build_ms_;
+  Stats2D s = line_tree_stats(tree_, build_ms_);
   s.extra = {{"segments", double(segs_.size())}};
   return s;
 }

@@ -25,6 +25,16 @@ std::string LineTree::label(uint32_t node) const {
   return s;
 }
 
+Stats2D line_tree_stats(const LineTree& tree, double build_ms) {
+  Stats2D s;
+  s.nodes = tree.nodes.size();
+  s.leaves = s.nodes - tree.internal;
+  s.depth = tree.depth;
+  s.fragments = tree.refs.size();
+  s.build_ms = build_ms;
+  return s;
+}
+
 Drawing2D draw_line_tree(const LineTree& tree, const Box2d& frame) {
   Drawing2D d;
   d.frame = frame;

@@ -49,6 +49,9 @@ Hit2 shoot_line_tree(const LineTree& tree, const Ray2& ray, double eps, HitShape
 /// The splitting lines clipped to their cells, and the leaves' cells, within frame.
 Drawing2D draw_line_tree(const LineTree& tree, const Box2d& frame);
 
+/// The tree's size: nodes, leaves, depth, references as fragments, and `build_ms`.
+Stats2D line_tree_stats(const LineTree& tree, double build_ms);
+
 // ---- implementation ----
 
 template <class HitShape>

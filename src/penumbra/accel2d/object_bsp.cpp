@@ -150,12 +150,7 @@ Hit2 ObjectBsp::shoot(const Ray2& ray, TraceLog* trace) const {
 }
 
 Stats2D ObjectBsp::stats() const {
-  Stats2D s;
-  s.nodes = tree_.nodes.size();
-  s.leaves = s.nodes - tree_.internal;
-  s.depth = tree_.depth;
-  s.fragments = tree_.refs.size();
-  s.build_ms = build_ms_;
+  Stats2D s = line_tree_stats(tree_, build_ms_);
   s.extra = {{"objects", double(objects_.size())}};
   return s;
 }

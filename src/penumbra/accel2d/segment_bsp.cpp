@@ -198,12 +198,7 @@ Hit2 SegmentBsp::shoot(const Ray2& ray, TraceLog* trace) const {
 }
 
 Stats2D SegmentBsp::stats() const {
-  Stats2D s;
-  s.nodes = tree_.nodes.size();
-  s.leaves = s.nodes - tree_.internal;
-  s.depth = tree_.depth;
-  s.fragments = frags_.size();
-  s.build_ms = build_ms_;
+  Stats2D s = line_tree_stats(tree_, build_ms_);  // refs hold one id per fragment
   size_t empty = 0;
   for (const LineNode& n : tree_.nodes) empty += n.leaf() && n.count == 0;
   s.extra = {{"segments", double(segs_.size())},

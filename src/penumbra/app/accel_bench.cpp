@@ -65,15 +65,6 @@ std::vector<std::string> split_accels(const std::string& text) {
   }
 }
 
-/// Mrays/s of tracing `rays` with `trace(ray)`.
-template <class F>
-double throughput(const std::vector<Ray>& rays, const F& trace) {
-  const double s = time_chunks(rays.size(), [&](size_t b, size_t e) {
-    for (size_t i = b; i < e; ++i) trace(rays[i], i);
-  });
-  return double(rays.size()) / std::max(s, 1e-9) * 1e-6;
-}
-
 /// True when two closest hits differ: hit against miss, or t beyond 1e-4 relative.
 bool differs(const Hit& a, const Hit& b) {
   if (a.valid() != b.valid()) return true;
@@ -104,23 +95,66 @@ std::vector<int> parse_thread_counts(const std::string& text, int all_threads) {
   return counts;
 }
 
-/// One run of the three ray sets through `intersect` and `occluded` at `threads` threads; the
-/// incoherent closest hits go to `hits`.
-template <class Intersect, class Occluded>
-BenchRates run_once(const RaySets& rays, int threads, const Intersect& intersect,
-                    const Occluded& occluded, std::vector<Hit>& hits) {
+/// Seconds to trace `rays` with `trace(ray, index)`, in chunks of kPairChunk rays; with `other`,
+/// each chunk is first traced with `other(ray, index)`, whose seconds go to `other_s`. Chunks
+/// alternate every few milliseconds, so both see the same load of a shared machine.
+constexpr size_t kPairChunk = 16384;
+template <class F, class G>
+double timed(const std::vector<Ray>& rays, const F& trace, const G* other, double& other_s) {
+  double s = 0;
+  for (size_t begin = 0; begin < rays.size(); begin += kPairChunk) {
+    const size_t n = std::min(kPairChunk, rays.size() - begin);
+    if (other)
+      other_s += time_chunks(n, [&](size_t b, size_t e) {
+        for (size_t i = begin + b; i < begin + e; ++i) (*other)(rays[i], i);
+      });
+    s += time_chunks(n, [&](size_t b, size_t e) {
+      for (size_t i = begin + b; i < begin + e; ++i) trace(rays[i], i);
+    });
+  }
+  return s;
+}
+
+/// One run of the three ray sets through `intersect` and `occluded` at `threads` threads, the
+/// incoherent closest hits going to `hits`; with Embree's functions given, interleaved chunk by
+/// chunk with Embree's, and the ratios to it set.
+template <class I, class O, class EI, class EO>
+BenchRates run_once(const RaySets& rays, int threads, const I& intersect, const O& occluded,
+                    std::vector<Hit>& hits, const EI* embree_intersect, const EO* embree_occluded) {
   const ThreadLimit limit(threads);
+  const bool pair = embree_intersect != nullptr;
+  std::vector<Hit> embree_hits(pair ? hits.size() : 0);
+  const auto mrays = [](size_t n, double s) { return double(n) / std::max(s, 1e-9) * 1e-6; };
   BenchRates rates;
   rates.threads = threads;
-  rates.primary = throughput(rays.primary, [&](const Ray& r, size_t) {
+  double ep = 0, ei = 0, eo = 0;
+  const auto primary = [&](const Ray& r, size_t) {
     Hit h;
     intersect(r, h);
-  });
+  };
+  const auto embree_primary = [&](const Ray& r, size_t) {
+    Hit h;
+    (*embree_intersect)(r, h);
+  };
+  rates.primary = mrays(rays.primary.size(),
+                        timed(rays.primary, primary, pair ? &embree_primary : nullptr, ep));
   // Fresh hits each run: a closest hit query starts from an empty record.
   std::fill(hits.begin(), hits.end(), Hit{});
-  rates.incoherent =
-      throughput(rays.incoherent, [&](const Ray& r, size_t i) { intersect(r, hits[i]); });
-  rates.occlusion = throughput(rays.incoherent, [&](const Ray& r, size_t) { occluded(r); });
+  const auto incoherent = [&](const Ray& r, size_t i) { intersect(r, hits[i]); };
+  const auto embree_incoherent = [&](const Ray& r, size_t i) {
+    (*embree_intersect)(r, embree_hits[i]);
+  };
+  rates.incoherent = mrays(rays.incoherent.size(), timed(rays.incoherent, incoherent,
+                                                         pair ? &embree_incoherent : nullptr, ei));
+  const auto occlusion = [&](const Ray& r, size_t) { occluded(r); };
+  const auto embree_occlusion = [&](const Ray& r, size_t) { (*embree_occluded)(r); };
+  rates.occlusion = mrays(rays.incoherent.size(), timed(rays.incoherent, occlusion,
+                                                        pair ? &embree_occlusion : nullptr, eo));
+  if (pair) {
+    rates.primary_vs_embree = rates.primary / mrays(rays.primary.size(), ep);
+    rates.incoherent_vs_embree = rates.incoherent / mrays(rays.incoherent.size(), ei);
+    rates.occlusion_vs_embree = rates.occlusion / mrays(rays.incoherent.size(), eo);
+  }
   return rates;
 }
 
@@ -130,27 +164,24 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-/// Measures a structure (or Embree, with `embree` empty) `repeat` times at each thread count:
-/// medians of the rates, and with `embree` given, each run preceded by one of Embree's, the
-/// medians of the paired ratios. Compares the incoherent closest hits with the reference if
-/// there is one, and keeps them in `keep` if given.
-template <class Intersect, class Occluded>
+/// Measures a structure (or Embree, with no Embree functions) `repeat` times at each thread
+/// count: medians of the rates and, with Embree's functions, of the ratios to Embree over runs
+/// interleaved with Embree's. Compares the incoherent closest hits with the reference if there
+/// is one, and keeps them in `keep` if given.
+template <class I, class O, class EI, class EO>
 void measure(BenchRow& row, const RaySets& rays, const std::vector<int>& threads, int repeat,
-             const Intersect& intersect, const Occluded& occluded,
-             const std::function<BenchRates(int, std::vector<Hit>&)>& embree,
-             std::vector<Hit>* keep) {
-  std::vector<Hit> hits(rays.incoherent.size()), scratch;
-  if (embree) scratch.resize(rays.incoherent.size());
+             const I& intersect, const O& occluded, const EI* embree_intersect,
+             const EO* embree_occluded, std::vector<Hit>* keep) {
+  std::vector<Hit> hits(rays.incoherent.size());
   for (const int t : threads) {
     std::vector<double> p, i, o, pr, ir, orr;
     for (int k = 0; k < repeat; ++k) {
-      std::optional<BenchRates> e;
-      if (embree) e = embree(t, scratch);
-      const BenchRates r = run_once(rays, t, intersect, occluded, hits);
+      const BenchRates r =
+          run_once(rays, t, intersect, occluded, hits, embree_intersect, embree_occluded);
       p.push_back(r.primary), i.push_back(r.incoherent), o.push_back(r.occlusion);
-      if (e)
-        pr.push_back(r.primary / e->primary), ir.push_back(r.incoherent / e->incoherent),
-            orr.push_back(r.occlusion / e->occlusion);
+      if (r.incoherent_vs_embree)
+        pr.push_back(*r.primary_vs_embree), ir.push_back(*r.incoherent_vs_embree),
+            orr.push_back(*r.occlusion_vs_embree);
     }
     BenchRates rates;
     rates.threads = t;
@@ -193,7 +224,7 @@ void add_accel_bench_command(CLI::App& app) {
       ->check(CLI::Range(size_t(1), size_t(1) << 30));
   cmd->add_option("--repeat", args->repeat,
                   "Runs per measurement (default 3): rates are medians; each run of a structure "
-                  "follows one of Embree's, and 'x embree' is the median of those ratios")
+                  "alternates with Embree's every 16384 rays, and 'x embree' is the median ratio")
       ->check(CLI::Range(1, 100));
   cmd->callback([args] { run_accel_bench(*args); });
 }
@@ -274,9 +305,10 @@ void run_accel_bench(const AccelBenchArgs& args) {
   std::vector<BenchRow> rows;
   const double triangles = double(mesh.triangle_count());
   std::optional<EmbreeScene> embree;
-  std::function<BenchRates(int, std::vector<Hit>&)> embree_run;
   const auto embree_intersect = [&](const Ray& r, Hit& h) { return embree->intersect(r, h); };
   const auto embree_occluded = [&](const Ray& r) { return embree->occluded(r); };
+  using EI = decltype(embree_intersect);
+  using EO = decltype(embree_occluded);
   if (have_embree()) {
     BenchRow row;
     row.accel = "embree";
@@ -285,12 +317,9 @@ void run_accel_bench(const AccelBenchArgs& args) {
       embree.emplace(mesh, build_threads);
     }
     row.build_ms = embree->build_ms(), row.bytes = embree->bytes();
-    measure(row, rays, threads, args.repeat, embree_intersect, embree_occluded, {},
-            &rays.reference);
+    measure(row, rays, threads, args.repeat, embree_intersect, embree_occluded,
+            static_cast<const EI*>(nullptr), static_cast<const EO*>(nullptr), &rays.reference);
     rows.push_back(row);
-    embree_run = [&](int t, std::vector<Hit>& hits) {
-      return run_once(rays, t, embree_intersect, embree_occluded, hits);
-    };
   }
   for (auto& accel : accels) {
     BenchRow row;
@@ -307,7 +336,8 @@ void run_accel_bench(const AccelBenchArgs& args) {
     measure(
         row, rays, threads, args.repeat,
         [&](const Ray& r, Hit& h) { return accel->intersect(r, h); },
-        [&](const Ray& r) { return accel->occluded(r); }, embree_run, nullptr);
+        [&](const Ray& r) { return accel->occluded(r); }, embree ? &embree_intersect : nullptr,
+        embree ? &embree_occluded : nullptr, nullptr);
     rows.push_back(row);
     accel.reset();  // free its memory before the next build
   }

@@ -59,11 +59,13 @@ enum class KdCriterion { kSah, kMedian, kGap };
 struct KdBuildParams {
   KdCriterion criterion = KdCriterion::kSah;
   float traversal_cost = 1.0f;  ///< ct: cost of an inner node
-  float intersect_cost = 0.1f;  ///< ci: cost of one primitive test (relative to ct)
+  float intersect_cost = 0.4f;  ///< ci: cost of one leaf test (a block or a primitive), vs ct
   float empty_bonus = 0.1f;     ///< the cost of a split with an empty side is scaled by 1 - this
   int max_leaf = 0;             ///< nodes with at most this many references become leaves
   int max_depth = 0;            ///< deepest level; 0 = round(8 + 1.3 log2 N) (pbrt)
   bool clip = true;             ///< clip straddling primitives to the children ("perfect splits")
+  /// Leaves are tested 2^block_shift primitives at a time (SIMD blocks): the SAH counts blocks.
+  int block_shift = 0;
   size_t parallel_min = 16384;  ///< nodes with more references build their children as tasks
 };
 

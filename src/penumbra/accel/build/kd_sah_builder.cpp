@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <oneapi/tbb/parallel_sort.h>
 
+#include "penumbra/accel/build/bvh_split.h"
 #include "penumbra/accel/build/kd_build.h"
 #include "penumbra/accel/build/kd_clip.h"
 #include "penumbra/accel/build/kd_events.h"
@@ -47,7 +48,8 @@ class SahSplitter {
     if (n <= size_t(p_.max_leaf) || depth >= max_depth_) return {};
     const SahSplit s = sweep(node);
     // Terminate when no split is cheaper than intersecting every primitive here.
-    if (s.axis < 0 || !(s.cost < p_.intersect_cost * float(n))) return {};
+    if (s.axis < 0 || !(s.cost < p_.intersect_cost * sah_tests(uint32_t(n), p_.block_shift)))
+      return {};
     distribute(node, s, below, above);
     return {s.axis, s.pos};
   }
@@ -56,7 +58,8 @@ class SahSplitter {
   /// SAH cost of a split with probabilities (pl, pr) and counts (nl, nr): Wald and Havran's
   /// lambda(p) (ct + ci (pl nl + pr nr)), lambda = 1 - empty_bonus when a side is empty.
   float cost(float pl, float pr, uint32_t nl, uint32_t nr) const {
-    const float c = p_.traversal_cost + p_.intersect_cost * (pl * float(nl) + pr * float(nr));
+    const float c = p_.traversal_cost + p_.intersect_cost * (pl * sah_tests(nl, p_.block_shift) +
+                                                             pr * sah_tests(nr, p_.block_shift));
     return (nl == 0 || nr == 0) ? c * (1.0f - p_.empty_bonus) : c;
   }
 
