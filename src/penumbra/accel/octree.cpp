@@ -225,9 +225,7 @@ Octree::Octree(const ParamList& params) {
   max_depth_ = int(params.get_int("depth", max_depth_, 1, kMaxOctreeDepth));
   trav_cost_ = params.get_real("trav", trav_cost_, 0.0, 1000.0);
   copy_ = params.get_int("copy", 1, 0, 1);
-  mailbox_ = int(params.get_int("mailbox", mailbox_, 0, 64));
-  if (mailbox_ != 0 && mailbox_ != 8 && mailbox_ != 16 && mailbox_ != 32 && mailbox_ != 64)
-    throw Error(fmt::format("octree: mailbox={} must be 0, 8, 16, 32 or 64", mailbox_));
+  mailbox_ = read_mailbox_size(params, mailbox_, "octree");
   params.check_all_used();
   name_ = params.to_string();
 }
@@ -402,19 +400,9 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit) const {
 
 template <bool kAnyHit>
 bool Octree::dispatch(const PreparedRay& pr, Hit& hit) const {
-  const bool tri = !tris_.empty();
-  switch (mailbox_) {
-    case 0:
-      return tri ? traverse<kAnyHit, true, 0>(pr, hit) : traverse<kAnyHit, false, 0>(pr, hit);
-    case 8:
-      return tri ? traverse<kAnyHit, true, 8>(pr, hit) : traverse<kAnyHit, false, 8>(pr, hit);
-    case 32:
-      return tri ? traverse<kAnyHit, true, 32>(pr, hit) : traverse<kAnyHit, false, 32>(pr, hit);
-    case 64:
-      return tri ? traverse<kAnyHit, true, 64>(pr, hit) : traverse<kAnyHit, false, 64>(pr, hit);
-    default:
-      return tri ? traverse<kAnyHit, true, 16>(pr, hit) : traverse<kAnyHit, false, 16>(pr, hit);
-  }
+  return dispatch_mailbox(mailbox_, !tris_.empty(), [&](auto triangles, auto size) {
+    return traverse<kAnyHit, decltype(triangles)::value, decltype(size)::value>(pr, hit);
+  });
 }
 
 bool Octree::intersect(const Ray& ray, Hit& hit) const {

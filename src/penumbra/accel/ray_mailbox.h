@@ -8,7 +8,13 @@
 /// correctness (the test is the same and the hit record keeps the closer hit). Also the loop over
 /// a cell's or leaf's references that both structures share.
 #include <cstdint>
+#include <string_view>
+#include <type_traits>
 
+#include <fmt/format.h>
+
+#include "penumbra/core/error.h"
+#include "penumbra/core/params.h"
 #include "penumbra/geometry/hit.h"
 #include "penumbra/geometry/primitive_set.h"
 
@@ -71,6 +77,36 @@ inline bool test_mailboxed(const PrimitiveSet& prims, const uint32_t* ids, const
     }
   }
   return found;
+}
+
+/// Reads mailbox=N (0, 8, 16, 32 or 64; default `fallback`) for `structure`; throws Error on
+/// another value.
+inline int read_mailbox_size(const ParamList& params, int fallback, std::string_view structure) {
+  const auto size = int(params.get_int("mailbox", fallback, 0, 64));
+  if (size != 0 && size != 8 && size != 16 && size != 32 && size != 64)
+    throw Error(fmt::format("{}: mailbox={} must be 0, 8, 16, 32 or 64", structure, size));
+  return size;
+}
+
+/// Calls f(triangles, size) with both as compile-time constants (std::bool_constant and
+/// std::integral_constant<int, ...>): one traversal instance per mailbox size and leaf layout.
+template <class F>
+bool dispatch_mailbox(int size, bool triangles, const F& f) {
+  const auto with_size = [&](auto size_tag) {
+    return triangles ? f(std::true_type{}, size_tag) : f(std::false_type{}, size_tag);
+  };
+  switch (size) {
+    case 0:
+      return with_size(std::integral_constant<int, 0>{});
+    case 8:
+      return with_size(std::integral_constant<int, 8>{});
+    case 32:
+      return with_size(std::integral_constant<int, 32>{});
+    case 64:
+      return with_size(std::integral_constant<int, 64>{});
+    default:
+      return with_size(std::integral_constant<int, 16>{});
+  }
 }
 
 }  // namespace penumbra

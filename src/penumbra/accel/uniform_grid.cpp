@@ -84,10 +84,8 @@ std::array<int, 3> cap_resolution(std::array<int, 3> res, size_t n) {
 UniformGrid::UniformGrid(const ParamList& params) {
   lambda_ = params.get_real("lambda", lambda_, 0.01, kMaxCellsPerPrim);
   if (params.has("res")) fixed_res_ = parse_res(params.get_string("res", ""));
-  mailbox_ = int(params.get_int("mailbox", mailbox_, 0, 64));
+  mailbox_ = read_mailbox_size(params, mailbox_, "grid");
   copy_ = params.get_int("copy", 1, 0, 1);
-  if (mailbox_ != 0 && mailbox_ != 8 && mailbox_ != 16 && mailbox_ != 32 && mailbox_ != 64)
-    throw Error(fmt::format("grid: mailbox={} must be 0, 8, 16, 32 or 64", mailbox_));
   if (params.has("res") && params.has("lambda"))
     throw Error("grid: give either lambda or res, not both");
   params.check_all_used();
@@ -335,19 +333,9 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit) const {
 
 template <bool kAnyHit>
 bool UniformGrid::dispatch(const PreparedRay& pr, Hit& hit) const {
-  const bool tri = !tris_.empty();
-  switch (mailbox_) {
-    case 0:
-      return tri ? traverse<kAnyHit, true, 0>(pr, hit) : traverse<kAnyHit, false, 0>(pr, hit);
-    case 8:
-      return tri ? traverse<kAnyHit, true, 8>(pr, hit) : traverse<kAnyHit, false, 8>(pr, hit);
-    case 32:
-      return tri ? traverse<kAnyHit, true, 32>(pr, hit) : traverse<kAnyHit, false, 32>(pr, hit);
-    case 64:
-      return tri ? traverse<kAnyHit, true, 64>(pr, hit) : traverse<kAnyHit, false, 64>(pr, hit);
-    default:
-      return tri ? traverse<kAnyHit, true, 16>(pr, hit) : traverse<kAnyHit, false, 16>(pr, hit);
-  }
+  return dispatch_mailbox(mailbox_, !tris_.empty(), [&](auto triangles, auto size) {
+    return traverse<kAnyHit, decltype(triangles)::value, decltype(size)::value>(pr, hit);
+  });
 }
 
 bool UniformGrid::intersect(const Ray& ray, Hit& hit) const {
