@@ -362,6 +362,13 @@ TEST(KdTree, TreeInvariantsHold) {
         if (!n.is_leaf()) {
           EXPECT_GT(n.split(), v.cell.lo[n.axis()]);
           EXPECT_LT(n.split(), v.cell.hi[n.axis()]);
+          // The traversal skips the children marked empty without loading them: exactly the
+          // empty leaves must be marked.
+          const auto empty = [&](uint32_t c) {
+            return kd.nodes()[c].is_leaf() && kd.nodes()[c].count() == 0;
+          };
+          EXPECT_EQ(n.empty_children(),
+                    uint32_t(empty(v.node + 1)) | uint32_t(empty(n.above())) << 1);
           continue;
         }
         ++leaves;

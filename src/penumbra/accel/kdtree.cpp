@@ -117,6 +117,14 @@ void KdTree::build(const PrimitiveSet& prims) {
     }
   }
   stats_.nodes = nodes_.size();
+  // Mark the children that are empty leaves, so that the traversal never loads them.
+  if (nodes_.size() < (size_t(1) << 28))
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      const KdNode n = nodes_[i];
+      if (n.is_leaf()) continue;
+      const auto empty = [&](size_t c) { return nodes_[c].is_leaf() && nodes_[c].count() == 0; };
+      nodes_[i] = n.with_empty_children(uint32_t(empty(i + 1)) | uint32_t(empty(n.above())) << 1);
+    }
   stats_.bytes =
       nodes_.capacity() * sizeof(KdNode) + refs_.capacity() * sizeof(uint32_t) + blocks_.bytes();
   stats_.build_ms = timer.elapsed_ms();
@@ -161,15 +169,28 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
       __builtin_prefetch(&nodes[above]);
       const uint32_t first = below ^ ((below ^ above) & neg_mask[axis]);
       const uint32_t second = below ^ above ^ first;
+      // Children that are empty leaves are skipped without being loaded.
+      const uint32_t first_is_above = neg_mask[axis] & 1u, empty = n.empty_children();
+      const bool first_empty = (empty >> first_is_above) & 1u;
+      const bool second_empty = (empty >> (first_is_above ^ 1u)) & 1u;
       if (tp >= tmax) {
+        if (first_empty) goto pop;
         index = first;
       } else if (tp <= tmin) {
+        if (second_empty) goto pop;
         index = second;
       } else {
         const float slack = kSlack * std::fabs(tp);
-        stack[sp++] = {second, max_keep(tp - slack, tmin), tmax};
-        tmax = min_keep(tp + slack, tmax);
-        index = first;
+        if (first_empty) {
+          if (second_empty) goto pop;
+          tmin = max_keep(tp - slack, tmin);
+          if (tmin > hit.t) goto pop;  // as the deferred entry would have been dropped
+          index = second;
+        } else {
+          if (!second_empty) stack[sp++] = {second, max_keep(tp - slack, tmin), tmax};
+          tmax = min_keep(tp + slack, tmax);
+          index = first;
+        }
       }
       n = nodes[index];
     }
@@ -191,6 +212,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
     // The next deferred cell that may still hold a closer hit. This is the early exit: a hit at
     // t <= this leaf's tmax skips every deferred cell, as they start at or after tmax, except
     // the cells beside a plane the ray lies in, which share this leaf's interval.
+  pop:
     do {
       if (sp == 0) return found;
       --sp;

@@ -18,7 +18,7 @@ struct AccelBenchArgs {
   std::string json;               ///< when set, results are also written here as a JSON array
   size_t rays = 1'000'000;        ///< incoherent (and occlusion) rays
   /// Runs per measurement: rates are medians; with Embree, each run of a structure alternates
-  /// with one of Embree's chunk by chunk (16,384 rays), and the ratios are the medians over runs
+  /// with one of Embree's chunk by chunk (131,072 rays), and the ratios are the medians over runs
   /// (robust to the load of a shared machine changing during the benchmark).
   int repeat = 3;
 };

@@ -56,7 +56,7 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
       "(build ms at {}; refs/prim: leaf references per triangle. Mrays/s, medians of {} run(s):\n"
       " primary = closest hits of the camera's rays, incoher. = closest hits of random rays,\n"
       " occlus. = any hit of the same rays. x embree: incoherent throughput over Embree's, median\n"
-      " of runs that alternate with Embree's every 16,384 rays. 'vs embree': incoherent closest\n"
+      " of runs that alternate with Embree's every 131,072 rays. 'vs embree': incoherent closest\n"
       " hits differing from Embree's, hit vs miss or t beyond 1e-4 relative; ties: same t,\n"
       " another triangle)\n",
       thread_label(build_threads), repeat);

@@ -32,7 +32,14 @@ class KdNode {
   /// Split position of an inner node.
   float split() const { return std::bit_cast<float>(word_); }
   /// Index of the child above the plane (inner nodes; the one below is this index + 1).
-  uint32_t above() const { return bits_ >> 2; }
+  uint32_t above() const { return (bits_ & kIndexMask) >> 2; }
+  /// Which children are empty leaves (bit 0: below, bit 1: above), once marked.
+  uint32_t empty_children() const { return bits_ >> 30; }
+  /// The same inner node with its children marked as empty leaves (`mask` as
+  /// empty_children()); its above() must be below 2^28.
+  KdNode with_empty_children(uint32_t mask) const {
+    return KdNode(word_, (bits_ & kIndexMask) | (mask << 30));
+  }
   /// First reference of a leaf.
   uint32_t first() const { return word_; }
   /// Number of references of a leaf.
@@ -44,6 +51,8 @@ class KdNode {
 
  private:
   KdNode(uint32_t word, uint32_t bits) : word_(word), bits_(bits) {}
+  /// Axis and above index of an inner node (the top two bits mark empty children).
+  static constexpr uint32_t kIndexMask = (1u << 30) - 1;
   uint32_t word_;
   uint32_t bits_;
 };
