@@ -11,46 +11,15 @@
 #include <sstream>
 #include <string>
 
+#include "cli_fixture.h"
+
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// A fresh directory for one test, removed afterwards.
-class Bsp2DCliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("penumbra-bsp2d-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  /// Runs the program with `args`; returns its exit code, stdout in out_, stderr in err_.
-  int run(const std::string& args) {
-    const std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " > " + path("out.txt") +
-                            " 2> " + path("err.txt") + " < /dev/null";
-    const int status = std::system(cmd.c_str());
-    out_ = slurp(path("out.txt"));
-    err_ = slurp(path("err.txt"));
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  static std::string slurp(const std::string& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-
-  fs::path dir_;
-  std::string out_, err_;
-};
+/// End-to-end tests share the fixture of cli_fixture.h.
+using Bsp2DCliTest = CliFixture;
 
 const char* kExample =
     "# the example of tests/accel2d/segment_bsp_test.cpp\n"

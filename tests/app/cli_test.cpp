@@ -20,50 +20,15 @@
 
 #include "penumbra/image/pfm.h"
 
+#include "cli_fixture.h"
+
 namespace penumbra {
 namespace {
 
 namespace fs = std::filesystem;
 
-/// A fresh directory for one test, removed afterwards.
-class CliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("penumbra-cli-" + std::to_string(::getpid()) + "-" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  /// Runs the program with `args`; returns its exit code, stderr in `err_`.
-  int run(const std::string& args) {
-    const std::string err_file = (dir_ / "stderr.txt").string();
-    const std::string cmd = std::string(PENUMBRA_CLI) + " " + args + " > " +
-                            (dir_ / "stdout.txt").string() + " 2> " + err_file + " < /dev/null";
-    const int status = std::system(cmd.c_str());
-    err_ = slurp(err_file);
-    out_ = slurp((dir_ / "stdout.txt").string());
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  }
-  static std::string slurp(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-  }
-  std::string path(const std::string& name) const { return (dir_ / name).string(); }
-  void write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-  }
-  static std::string scene(const std::string& name) {
-    return std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name;
-  }
-
-  fs::path dir_;
-  std::string err_, out_;
-};
+/// End-to-end tests share the fixture of cli_fixture.h.
+using CliTest = CliFixture;
 
 TEST_F(CliTest, HelpListsEverySubcommandAndRenderFlag) {
   ASSERT_EQ(run("--help"), 0);
@@ -137,8 +102,8 @@ TEST_F(CliTest, BadInputFailsWithAMessageAndNoOutput) {
 // was found at configure time) with the documented keys, and one run per thread count.
 TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   // Brute force traces the 1024 x 1024 primary rays too: only over the 38 Cornell triangles.
-  for (const std::string input : {scene("cornell-box.json") + " --accel bvh,brute",
-                                  scene("meshes/bunny.obj") + " --accel bvh,bvh:sweep"}) {
+  for (const std::string& input : {scene("cornell-box.json") + " --accel bvh,brute",
+                                   scene("meshes/bunny.obj") + " --accel bvh,bvh:sweep"}) {
     ASSERT_EQ(run("accel-bench " + input + " --threads 1 --repeat 1 --rays 2000 --json " +
                   path("bench.json")),
               0)
@@ -189,7 +154,9 @@ TEST_F(CliTest, AccelBenchRepeatsAndPairsRunsWithEmbree) {
     const bool expect_ratio = embree && row["accel"] != "embree";
     for (const char* key : {"primary_vs_embree", "incoherent_vs_embree", "occlusion_vs_embree"}) {
       EXPECT_EQ(r.contains(key), expect_ratio) << key << " in " << row.dump();
-      if (expect_ratio) EXPECT_GT(r[key].get<double>(), 0.0) << key;
+      if (expect_ratio) {
+        EXPECT_GT(r[key].get<double>(), 0.0) << key;
+      }
     }
   }
   for (const char* bad : {"0", "x", "101"})

@@ -151,7 +151,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
   tmax += kSlack * std::fabs(tmax);
 
   const KdNode* nodes = nodes_.data();
-  const BlockRay block_ray(pr);
+  const MaybeBlockRay<kTriangles> block_ray(pr);
   StackEntry stack[kKdMaxDepth];
   int sp = 0;
   uint32_t index = 0;

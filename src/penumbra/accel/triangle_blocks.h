@@ -12,6 +12,7 @@
 #include <bit>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 #include <vector>
 
 #include "penumbra/accel/build/array_allocator.h"
@@ -90,6 +91,11 @@ struct BlockRay {
         sz(block_detail::splat(r.sz)),
         tmin(block_detail::splat(r.ray.tmin)) {}
 };
+
+/// The ray's block values when a traversal tests blocks (kBlocks), nothing otherwise: the
+/// per-primitive path does not pay for them.
+template <bool kBlocks>
+using MaybeBlockRay = std::conditional_t<kBlocks, BlockRay, const PreparedRay&>;
 
 /// Four triangles: vertex coordinates by vertex and axis, one lane per triangle. Unused lanes
 /// carry NaN vertices (never hit) and id 0xffffffff.

@@ -195,7 +195,7 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
           fz = F::broadcast(pr.inv_dir.z * kFarScale);
   const int nx = pr.neg[0], ny = 2 + pr.neg[1], nz = 4 + pr.neg[2];
   const F t0 = F::broadcast(pr.ray.tmin);
-  const BlockRay block_ray(pr);
+  const MaybeBlockRay<kTriangles> block_ray(pr);
   // A deferred child will often be visited: start loading its first line (a node's boxes, or a
   // leaf's first block) while the nearer ones are traversed.
   const auto prefetch_child = [&](uint32_t c, uint32_t count) {

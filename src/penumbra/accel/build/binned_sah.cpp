@@ -182,31 +182,20 @@ namespace {
 
 /// Centroid bounds (of lo + hi) grown one reference at a time; SIMD where available.
 struct CentroidBounds {
+  BoxAccumulator box;
+  void add(const PrimRef& r) {
 #if defined(__SSE2__)
-  __m128 lo = _mm_set1_ps(kInfinity), hi = _mm_set1_ps(-kInfinity);
-  void add(const PrimRef& r) {
     const __m128 c = _mm_add_ps(_mm_load_ps(&r.lo.x), _mm_load_ps(&r.hi.x));
-    lo = _mm_min_ps(lo, c);
-    hi = _mm_max_ps(hi, c);
-  }
-  Bounds3 get() const {
-    alignas(16) float l[4], h[4];
-    _mm_store_ps(l, lo);
-    _mm_store_ps(h, hi);
-    Bounds3 b;
-    b.lo = {l[0], l[1], l[2]};
-    b.hi = {h[0], h[1], h[2]};
-    return b;
-  }
+    box.lo = _mm_min_ps(box.lo, c);
+    box.hi = _mm_max_ps(box.hi, c);
 #else
-  Bounds3 b;
-  void add(const PrimRef& r) {
-    b.extend(r.centroid2());
+    const Vec3 c = r.centroid2();
+    box.add(&c.x, &c.x);
+#endif
   }
   Bounds3 get() const {
-    return b;
+    return box.bounds();
   }
-#endif
 };
 
 /// Partition along a fixed axis A (the axis is a template parameter, so the centroid coordinate
