@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "penumbra/accel/build/kd_clip.h"
@@ -32,11 +33,13 @@ void add_triangle(PrimitiveSet& prims, Vec3 a, Vec3 b, Vec3 c) {
   prims.add_mesh(m, Transform(), 0);
 }
 
-/// A leaf or inner node with its cell, from a walk of the tree.
+/// A leaf or inner node with its cell, from a walk of the tree. Children marked as empty leaves
+/// are not stored (the traversal never loads them): they appear with `empty` set.
 struct Visit {
   uint32_t node;
   Bounds3 cell;
   int depth;
+  bool empty = false;  ///< an empty leaf left out of the node array (`node` is meaningless)
 };
 
 std::vector<Visit> walk(const KdTree& kd) {
@@ -46,14 +49,23 @@ std::vector<Visit> walk(const KdTree& kd) {
     const Visit v = stack.back();
     stack.pop_back();
     out.push_back(v);
+    if (v.empty) continue;
     const KdNode& n = nodes[v.node];
     if (n.is_leaf()) continue;
     Bounds3 below = v.cell, above = v.cell;
     below.hi[n.axis()] = above.lo[n.axis()] = n.split();
-    stack.push_back({n.above(), above, v.depth + 1});
-    stack.push_back({v.node + 1, below, v.depth + 1});
+    const uint32_t marked = n.empty_children();
+    stack.push_back({n.above(), above, v.depth + 1, (marked & 2u) != 0});
+    stack.push_back({v.node + 1, below, v.depth + 1, (marked & 1u) != 0});
   }
   return out;
+}
+
+/// The statistic `key` of `st.extra` (NaN when missing).
+double extra(const AccelStats& st, const std::string& key) {
+  for (const auto& [k, value] : st.extra)
+    if (k == key) return value;
+  return std::nan("");
 }
 
 /// Closest hits, and occlusion with infinite and finite tmax, against brute force; returns the
@@ -289,8 +301,8 @@ TEST(KdTree, RaysAlongSplitPlanesAgreeWithBruteForce) {
     Pcg32 rng(5, 5);
     const Bounds3 b = kd.bounds();
     for (const Visit& v : walk(kd)) {
+      if (v.empty || kd.nodes()[v.node].is_leaf() || rays.size() > 20000) continue;
       const KdNode& n = kd.nodes()[v.node];
-      if (n.is_leaf() || rays.size() > 20000) continue;
       for (int k = 0; k < 48; ++k) {
         Ray r;
         r.o = b.lo + b.diagonal() * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
@@ -337,8 +349,12 @@ TEST(KdTree, EmptySpaceIsCutOff) {
   double largest = 0;
   size_t empty_leaves = 0;
   for (const Visit& v : walk(kd)) {
-    const KdNode& n = kd.nodes()[v.node];
-    if (!n.is_leaf() || n.count() > 0) continue;
+    if (!v.empty) {
+      // Only marked empty leaves are left out of the array.
+      const KdNode& n = kd.nodes()[v.node];
+      EXPECT_FALSE(n.is_leaf() && n.count() == 0 && v.depth > 0);
+      continue;
+    }
     ++empty_leaves;
     const Vec3 e = v.cell.diagonal();
     largest = std::max(largest, double(e.x) * e.y * e.z / root_volume);
@@ -356,20 +372,29 @@ TEST(KdTree, TreeInvariantsHold) {
       const AccelStats st = kd.stats();
       std::vector<int> referenced(s.prims.size(), 0);
       size_t leaves = 0, refs = 0, max_depth = 0;
+      std::vector<int> reached(kd.nodes().size(), 0);
+      size_t stored = 0, empty_leaves = 0;
       for (const Visit& v : walk(kd)) {
-        const KdNode& n = kd.nodes()[v.node];
         max_depth = std::max(max_depth, size_t(v.depth));
+        if (v.empty) {
+          ++leaves, ++empty_leaves;
+          continue;
+        }
+        ++stored;
+        ASSERT_LT(v.node, kd.nodes().size());
+        EXPECT_EQ(++reached[v.node], 1) << v.node;
+        const KdNode& n = kd.nodes()[v.node];
         if (!n.is_leaf()) {
           EXPECT_GT(n.split(), v.cell.lo[n.axis()]);
           EXPECT_LT(n.split(), v.cell.hi[n.axis()]);
-          // The traversal skips the children marked empty without loading them: exactly the
-          // empty leaves must be marked.
-          const auto empty = [&](uint32_t c) {
-            return kd.nodes()[c].is_leaf() && kd.nodes()[c].count() == 0;
-          };
-          EXPECT_EQ(n.empty_children(),
-                    uint32_t(empty(v.node + 1)) | uint32_t(empty(n.above())) << 1);
+          // The traversal reads the next node of every inner node (to prefetch).
+          EXPECT_LT(v.node + 1, kd.nodes().size());
           continue;
+        }
+        // The traversal skips the children marked empty without loading them, and those are
+        // left out of the array: a stored leaf other than the root is not empty.
+        if (v.depth > 0) {
+          EXPECT_GT(n.count(), 0u) << v.node;
         }
         ++leaves;
         refs += n.count();
@@ -382,8 +407,13 @@ TEST(KdTree, TreeInvariantsHold) {
       }
       for (uint32_t id = 0; id < s.prims.size(); ++id)
         EXPECT_EQ(referenced[id] > 0, !s.prims.prim_bounds(id).empty()) << id;
-      EXPECT_EQ(st.nodes, kd.nodes().size());
       EXPECT_EQ(st.nodes, 2 * leaves - 1);
+      EXPECT_EQ(extra(st, "stored nodes"), double(kd.nodes().size()));
+      EXPECT_EQ(extra(st, "empty leaves"), double(empty_leaves));
+      // Every stored node is reached, but the below one of two empty children, kept so that
+      // each inner node has a next node.
+      EXPECT_LE(stored, kd.nodes().size());
+      EXPECT_GE(stored + empty_leaves / 2, kd.nodes().size());
       EXPECT_EQ(st.leaves, leaves);
       EXPECT_EQ(st.prim_refs, refs);
       EXPECT_EQ(st.max_depth, max_depth);

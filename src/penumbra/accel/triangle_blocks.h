@@ -30,45 +30,82 @@ namespace penumbra {
 namespace block_detail {
 
 using F4 = float __attribute__((vector_size(16)));
-using I4 = int32_t __attribute__((vector_size(16)));
+using F8 = float __attribute__((vector_size(32)));
 using D4 = double __attribute__((vector_size(32)));
+using D8 = double __attribute__((vector_size(64)));
+
+/// The integer vector of a float vector's comparisons, and the double vector of its lanes.
+template <class F>
+using IntOf = decltype(F{} < F{});
+template <class F>
+using DoubleOf = std::conditional_t<sizeof(F) == 16, D4, D8>;
 
 inline F4 load(const float* p) {
   F4 r;
   __builtin_memcpy(&r, p, sizeof r);
   return r;
 }
-inline F4 splat(float x) {
-  return F4{x, x, x, x};
+/// Lanes of the first four of an eight-lane vector (free: the low half of the register).
+inline F4 low(F8 a) {
+  return __builtin_shufflevector(a, a, 0, 1, 2, 3);
 }
+/// Two four-lane vectors side by side.
+inline F8 join(F4 a, F4 b) {
+  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+inline F8 splat8(float x) {
+  return F8{x, x, x, x, x, x, x, x};
+}
+/// `x` in every lane of an F (4 or 8 lanes).
+template <class F>
+inline F splat(float x) {
+  if constexpr (sizeof(F) == 16)
+    return F4{x, x, x, x};
+  else
+    return splat8(x);
+}
+
 /// std::min and std::max lane-wise, with their operand order (so NaN behaves the same).
-inline F4 vmin(F4 a, F4 b) {
+template <class F>
+inline F vmin(F a, F b) {
   return b < a ? b : a;
 }
-inline F4 vmax(F4 a, F4 b) {
+template <class F>
+inline F vmax(F a, F b) {
   return a < b ? b : a;
 }
-inline F4 vabs(F4 a) {
-  return (F4)((I4)a & I4{0x7fffffff, 0x7fffffff, 0x7fffffff, 0x7fffffff});
+template <class F>
+inline F vabs(F a) {
+  using I = IntOf<F>;
+  return (F)((I)a & (I{} + 0x7fffffff));
 }
 /// fmax as the scalar test uses it (no NaN can reach it: such lanes were rejected).
-inline F4 vfmax(F4 a, F4 b) {
+template <class F>
+inline F vfmax(F a, F b) {
   return a < b ? b : a;
 }
+
 /// Bit i set where lane i of `m` is true (all ones).
-inline unsigned mask_bits(I4 m) {
-#if defined(__SSE__)
-  return unsigned(_mm_movemask_ps((__m128)m));
-#else
-  return unsigned(m[0] & 1) | unsigned(m[1] & 1) << 1 | unsigned(m[2] & 1) << 2 |
-         unsigned(m[3] & 1) << 3;
+template <class I>
+inline unsigned mask_bits(I m) {
+#if defined(__AVX__)
+  if constexpr (sizeof(I) == 32) return unsigned(_mm256_movemask_ps((__m256)m));
 #endif
+#if defined(__SSE__)
+  if constexpr (sizeof(I) == 16) return unsigned(_mm_movemask_ps((__m128)m));
+#endif
+  unsigned bits = 0;
+  for (int i = 0; i < int(sizeof(I) / 4); ++i) bits |= unsigned(m[i] & 1) << i;
+  return bits;
 }
+
 /// a * b - c * d in double, rounded once to float (exact products).
-inline F4 edge_exact(F4 a, F4 b, F4 c, F4 d) {
-  const D4 r = __builtin_convertvector(a, D4) * __builtin_convertvector(b, D4) -
-               __builtin_convertvector(c, D4) * __builtin_convertvector(d, D4);
-  return __builtin_convertvector(r, F4);
+template <class F>
+inline F edge_exact(F a, F b, F c, F d) {
+  using D = DoubleOf<F>;
+  const D r = __builtin_convertvector(a, D) * __builtin_convertvector(b, D) -
+              __builtin_convertvector(c, D) * __builtin_convertvector(d, D);
+  return __builtin_convertvector(r, F);
 }
 
 }  // namespace block_detail
@@ -76,20 +113,20 @@ inline F4 edge_exact(F4 a, F4 b, F4 c, F4 d) {
 /// A ray's values for the block test, prepared once per ray (a traversal may test many leaves).
 struct BlockRay {
   int kx, ky, kz;                           ///< the watertight test's axis permutation
-  block_detail::F4 ox, oy, oz, sx, sy, sz;  ///< permuted origin and shear, in every lane
-  block_detail::F4 tmin;                    ///< ray.tmin in every lane
+  block_detail::F8 ox, oy, oz, sx, sy, sz;  ///< permuted origin and shear, in every lane
+  block_detail::F8 tmin;                    ///< ray.tmin in every lane
 
   explicit BlockRay(const PreparedRay& r)
       : kx(r.kx),
         ky(r.ky),
         kz(r.kz),
-        ox(block_detail::splat(r.ray.o[r.kx])),
-        oy(block_detail::splat(r.ray.o[r.ky])),
-        oz(block_detail::splat(r.ray.o[r.kz])),
-        sx(block_detail::splat(r.sx)),
-        sy(block_detail::splat(r.sy)),
-        sz(block_detail::splat(r.sz)),
-        tmin(block_detail::splat(r.ray.tmin)) {}
+        ox(block_detail::splat8(r.ray.o[r.kx])),
+        oy(block_detail::splat8(r.ray.o[r.ky])),
+        oz(block_detail::splat8(r.ray.o[r.kz])),
+        sx(block_detail::splat8(r.sx)),
+        sy(block_detail::splat8(r.sy)),
+        sz(block_detail::splat8(r.sz)),
+        tmin(block_detail::splat8(r.ray.tmin)) {}
 };
 
 /// The ray's block values when a traversal tests blocks (kBlocks), nothing otherwise: the
@@ -137,76 +174,121 @@ class TriangleBlocks {
   std::vector<TriangleBlock, ArrayAllocator<TriangleBlock>> blocks_;
 };
 
+namespace block_detail {
+
+/// Coordinate `axis` of vertex `k` of the lanes starting at `blk`: one block's four lanes (F4)
+/// or two consecutive blocks' eight (F8).
+template <class F>
+inline F lanes(const TriangleBlock* blk, int k, int axis) {
+  if constexpr (sizeof(F) == 16)
+    return load(blk[0].v[k][axis]);
+  else
+    return join(load(blk[0].v[k][axis]), load(blk[1].v[k][axis]));
+}
+/// A ray value at the lane count of F.
+template <class F>
+inline F ray_lanes(F8 x) {
+  if constexpr (sizeof(F) == 16)
+    return low(x);
+  else
+    return x;
+}
+
+/// Tests the lanes of F (one block, or two from `blk` on) against `r` on (tmin, hit.t) and
+/// accepts their hits in lane order, as the scalar loop would; returns whether one was found
+/// (kAnyHit: as soon as one is, leaving `hit` unspecified).
+template <bool kAnyHit, class F>
+inline bool test_lanes(const BlockRay& r, const TriangleBlock* blk, Hit& hit) {
+  using I = IntOf<F>;
+  const int kx = r.kx, ky = r.ky, kz = r.kz;
+  const F ox = ray_lanes<F>(r.ox), oy = ray_lanes<F>(r.oy), oz = ray_lanes<F>(r.oz);
+  const F sx = ray_lanes<F>(r.sx), sy = ray_lanes<F>(r.sy), sz = ray_lanes<F>(r.sz);
+  const F tmin = ray_lanes<F>(r.tmin);
+  const F zero = splat<F>(0.0f);
+  // Vertices relative to the origin, sheared so that the ray runs along +z.
+  const F Az = lanes<F>(blk, 0, kz) - oz, Bz = lanes<F>(blk, 1, kz) - oz,
+          Cz = lanes<F>(blk, 2, kz) - oz;
+  const F ax = (lanes<F>(blk, 0, kx) - ox) - sx * Az, ay = (lanes<F>(blk, 0, ky) - oy) - sy * Az;
+  const F bx = (lanes<F>(blk, 1, kx) - ox) - sx * Bz, by = (lanes<F>(blk, 1, ky) - oy) - sy * Bz;
+  const F cx = (lanes<F>(blk, 2, kx) - ox) - sx * Cz, cy = (lanes<F>(blk, 2, ky) - oy) - sy * Cz;
+  // Edge functions in float; lanes where one is zero take all three from double (as the
+  // scalar test does: triangle.h).
+  F U = cx * by - cy * bx, V = ax * cy - ay * cx, W = bx * ay - by * ax;
+  const I exact = (U == zero) | (V == zero) | (W == zero);
+  if (mask_bits(exact)) [[unlikely]] {
+    U = exact ? edge_exact(cx, by, cy, bx) : U;
+    V = exact ? edge_exact(ax, cy, ay, cx) : V;
+    W = exact ? edge_exact(bx, ay, by, ax) : W;
+  }
+  // Inside: edge functions of one sign. Most lanes are missed here.
+  I ok = ~((vmin(U, vmin(V, W)) < zero) & (vmax(U, vmax(V, W)) > zero));
+  if (!mask_bits(ok)) return false;
+  const F det = (U + V) + W;
+  const F adet = vabs(det);
+  ok &= adet > zero;  // not degenerate (false for NaN)
+  const F az = sz * Az, bz = sz * Bz, cz = sz * Cz;
+  const F T = ((U * az) + (V * bz)) + (W * cz);
+  const F sT = (F)((I)T ^ ((I)det & (I{} + INT32_MIN)));
+  const F tmax = splat<F>(hit.t);
+  ok &= ~(sT <= tmin * adet) & ~(sT >= tmax * adet);
+  if (!mask_bits(ok)) return false;
+  const F inv = 1.0f / det;
+  const F t = T * inv;
+  // The conservative bound on the error of t (pbrt-v3 section 3.9.6), as in triangle.h.
+  const F max_zt = vfmax(vabs(az), vfmax(vabs(bz), vabs(cz)));
+  const F max_xt = vfmax(vabs(ax), vfmax(vabs(bx), vabs(cx)));
+  const F max_yt = vfmax(vabs(ay), vfmax(vabs(by), vabs(cy)));
+  const F delta_z = splat<F>(gamma(3)) * max_zt;
+  const F delta_x = splat<F>(gamma(5)) * (max_xt + max_zt);
+  const F delta_y = splat<F>(gamma(5)) * (max_yt + max_zt);
+  const F delta_e = splat<F>(2.0f) * (((splat<F>(gamma(2)) * max_xt) * max_yt + delta_y * max_xt) +
+                                      delta_x * max_yt);
+  const F max_e = vfmax(vabs(U), vfmax(vabs(V), vabs(W)));
+  const F delta_t = (splat<F>(3.0f) * (((splat<F>(gamma(3)) * max_e) * max_zt + delta_e * max_zt) +
+                                       delta_z * max_e)) *
+                    vabs(inv);
+  ok &= (t > delta_t) & (t > tmin) & (t < tmax);
+  unsigned hits = mask_bits(ok);
+  if (!hits) return false;
+  if constexpr (kAnyHit) return true;
+  // Accept the candidates in lane order as the scalar loop would: each hit shrinks the
+  // interval, and a later lane must pass the two tests that depend on it again (with their
+  // own rounding, so that a t equal to the current one in all but the last bit is decided the
+  // same way).
+  bool accepted = false;
+  for (; hits; hits &= hits - 1) {
+    const int i = std::countr_zero(hits);
+    if (accepted && (sT[i] >= hit.t * adet[i] || !(t[i] < hit.t))) continue;
+    hit.t = t[i];
+    hit.u = V[i] * inv[i];
+    hit.v = W[i] * inv[i];
+    hit.prim = blk[i >> 2].id[i & 3];
+    accepted = true;
+  }
+  return accepted;
+}
+
+}  // namespace block_detail
+
 template <bool kAnyHit>
 bool TriangleBlocks::intersect(const BlockRay& r, uint32_t first, uint32_t count, Hit& hit) const {
   using namespace block_detail;
-  const int kx = r.kx, ky = r.ky, kz = r.kz;
-  const F4 ox = r.ox, oy = r.oy, oz = r.oz, sx = r.sx, sy = r.sy, sz = r.sz, tmin = r.tmin;
-  const F4 zero = splat(0.0f);
   bool found = false;
+  uint32_t b = first;
   const uint32_t end = first + blocks_for(count);
-  for (uint32_t b = first; b < end; ++b) {
-    const TriangleBlock& blk = blocks_[b];
-    // Vertices relative to the origin, sheared so that the ray runs along +z.
-    const F4 Az = load(blk.v[0][kz]) - oz, Bz = load(blk.v[1][kz]) - oz,
-             Cz = load(blk.v[2][kz]) - oz;
-    const F4 ax = (load(blk.v[0][kx]) - ox) - sx * Az, ay = (load(blk.v[0][ky]) - oy) - sy * Az;
-    const F4 bx = (load(blk.v[1][kx]) - ox) - sx * Bz, by = (load(blk.v[1][ky]) - oy) - sy * Bz;
-    const F4 cx = (load(blk.v[2][kx]) - ox) - sx * Cz, cy = (load(blk.v[2][ky]) - oy) - sy * Cz;
-    // Edge functions in float; lanes where one is zero take all three from double (as the
-    // scalar test does: triangle.h).
-    F4 U = cx * by - cy * bx, V = ax * cy - ay * cx, W = bx * ay - by * ax;
-    const I4 exact = (U == zero) | (V == zero) | (W == zero);
-    if (mask_bits(exact)) [[unlikely]] {
-      U = exact ? edge_exact(cx, by, cy, bx) : U;
-      V = exact ? edge_exact(ax, cy, ay, cx) : V;
-      W = exact ? edge_exact(bx, ay, by, ax) : W;
-    }
-    // Inside: edge functions of one sign. Most blocks are missed here.
-    I4 ok = ~((vmin(U, vmin(V, W)) < zero) & (vmax(U, vmax(V, W)) > zero));
-    if (!mask_bits(ok)) continue;
-    const F4 det = (U + V) + W;
-    const F4 adet = vabs(det);
-    ok &= adet > zero;  // not degenerate (false for NaN)
-    const F4 az = sz * Az, bz = sz * Bz, cz = sz * Cz;
-    const F4 T = ((U * az) + (V * bz)) + (W * cz);
-    const F4 sT = (F4)((I4)T ^ ((I4)det & I4{INT32_MIN, INT32_MIN, INT32_MIN, INT32_MIN}));
-    const F4 tmax = splat(hit.t);
-    ok &= ~(sT <= tmin * adet) & ~(sT >= tmax * adet);
-    if (!mask_bits(ok)) continue;
-    const F4 inv = 1.0f / det;
-    const F4 t = T * inv;
-    // The conservative bound on the error of t (pbrt-v3 section 3.9.6), as in triangle.h.
-    const F4 max_zt = vfmax(vabs(az), vfmax(vabs(bz), vabs(cz)));
-    const F4 max_xt = vfmax(vabs(ax), vfmax(vabs(bx), vabs(cx)));
-    const F4 max_yt = vfmax(vabs(ay), vfmax(vabs(by), vabs(cy)));
-    const F4 delta_z = splat(gamma(3)) * max_zt;
-    const F4 delta_x = splat(gamma(5)) * (max_xt + max_zt);
-    const F4 delta_y = splat(gamma(5)) * (max_yt + max_zt);
-    const F4 delta_e =
-        splat(2.0f) * (((splat(gamma(2)) * max_xt) * max_yt + delta_y * max_xt) + delta_x * max_yt);
-    const F4 max_e = vfmax(vabs(U), vfmax(vabs(V), vabs(W)));
-    const F4 delta_t = (splat(3.0f) * (((splat(gamma(3)) * max_e) * max_zt + delta_e * max_zt) +
-                                       delta_z * max_e)) *
-                       vabs(inv);
-    ok &= (t > delta_t) & (t > tmin) & (t < tmax);
-    unsigned lanes = mask_bits(ok);
-    if (!lanes) continue;
-    if constexpr (kAnyHit) return true;
-    // Accept the candidates in lane order as the scalar loop would: each hit shrinks the
-    // interval, and a later lane must pass the two tests that depend on it again (with their
-    // own rounding, so that a t equal to the current one in all but the last bit is decided the
-    // same way).
-    for (; lanes; lanes &= lanes - 1) {
-      const int i = std::countr_zero(lanes);
-      if (found && (sT[i] >= hit.t * adet[i] || !(t[i] < hit.t))) continue;
-      hit.t = t[i];
-      hit.u = V[i] * inv[i];
-      hit.v = W[i] * inv[i];
-      hit.prim = blk.id[i];
+#if defined(__AVX__)
+  // Two blocks at a time where eight-lane vectors are native.
+  for (; b + 1 < end; b += 2)
+    if (test_lanes<kAnyHit, F8>(r, &blocks_[b], hit)) {
+      if constexpr (kAnyHit) return true;
       found = true;
     }
-  }
+#endif
+  for (; b < end; ++b)
+    if (test_lanes<kAnyHit, F4>(r, &blocks_[b], hit)) {
+      if constexpr (kAnyHit) return true;
+      found = true;
+    }
   return found;
 }
 
