@@ -16,7 +16,10 @@ inline constexpr int kKdMaxDepth = 64;
 /// One kd-tree node in 8 bytes. Inner: the split position, the axis (0..2) in the low two bits
 /// of `bits_` and the index of the child above the plane in the upper 30; the child below is
 /// the next node. Leaf: the index of its first reference in the reference array, 3 in the low
-/// bits and the reference count in the upper 30.
+/// bits and the reference count in the upper 30. KdTree stores its nodes with the children that
+/// are empty leaves marked (the top two bits, which leaves 28 for the index) and left out of
+/// the array: there, the next node of an inner node whose below child is empty is its above
+/// child (see KdTree::build).
 class KdNode {
  public:
   /// An inner node splitting `axis` at `split`, whose above child is node `above`.
