@@ -228,7 +228,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
         }
       }
       n = nodes[index];
-      }
+    }
     // Leaf: test its primitives; each hit shrinks hit.t.
     if constexpr (kTriangles) {
       // Blocks of four, tested four at a time (bit for bit the scalar test in reference order).
