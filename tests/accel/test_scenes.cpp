@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "penumbra/core/rng.h"
+#include "penumbra/geometry/sphere_direction.h"
 #include "penumbra/core/transform.h"
 
 namespace penumbra::test {
@@ -16,10 +17,7 @@ Vec3 random_vec(Pcg32& rng) {
 }
 
 Vec3 random_dir(Pcg32& rng) {
-  const float z = 1.0f - 2.0f * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  const float phi = 2.0f * std::numbers::pi_v<float> * rng.next_float();
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  return sample_uniform_sphere({rng.next_float(), rng.next_float()});
 }
 
 /// Appends one triangle as its own mesh (identity transform keeps coordinates exact).
@@ -284,9 +282,7 @@ Vec3 point_on(const PrimitiveSet& prims, uint32_t id, float u1, float u2) {
     }
     case PrimKind::kSphere: {
       const SphereData& sp = prims.sphere(id);
-      const float z = 1.0f - 2.0f * u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-      const float phi = 2.0f * std::numbers::pi_v<float> * u2;
-      return sp.center + Vec3(r * std::cos(phi), r * std::sin(phi), z) * sp.radius;
+      return sp.center + sample_uniform_sphere({u1, u2}) * sp.radius;
     }
     case PrimKind::kQuad: {
       const QuadData& q = prims.quad(id);

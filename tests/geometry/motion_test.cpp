@@ -5,9 +5,9 @@
 
 #include <cmath>
 #include <limits>
-#include <numbers>
 
 #include "penumbra/core/rng.h"
+#include "penumbra/geometry/sphere_direction.h"
 #include "penumbra/geometry/primitive_set.h"
 
 namespace penumbra {
@@ -18,10 +18,7 @@ Vec3 random_vec(Pcg32& rng) {
 }
 
 Vec3 random_dir(Pcg32& rng) {
-  const float z = 1.0f - 2.0f * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  const float phi = 2.0f * std::numbers::pi_v<float> * rng.next_float();
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  return sample_uniform_sphere({rng.next_float(), rng.next_float()});
 }
 
 /// The interpolation the documentation promises, in double: (1 - t) a + t b.

@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "penumbra/core/rng.h"
+#include "penumbra/geometry/sphere_direction.h"
 #include "penumbra/geometry/triangle.h"
 
 namespace penumbra {
@@ -24,10 +25,7 @@ TriHit trace(Vec3 o, Vec3 d, Vec3 a, Vec3 b, Vec3 c, float tmin = 0.0f, float tm
 }
 
 Vec3 random_dir(Pcg32& rng) {
-  const float z = 1.0f - 2.0f * rng.next_float();
-  const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-  const float phi = 2.0f * std::numbers::pi_v<float> * rng.next_float();
-  return {r * std::cos(phi), r * std::sin(phi), z};
+  return sample_uniform_sphere({rng.next_float(), rng.next_float()});
 }
 
 TEST(Triangle, InteriorHitGivesDistanceAndBarycentrics) {

@@ -6,6 +6,7 @@
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/core/timer.h"
+#include "penumbra/geometry/sphere_direction.h"
 
 namespace penumbra::app {
 
@@ -45,10 +46,7 @@ std::vector<Ray> incoherent_rays(const Bounds3& bounds, size_t n, uint64_t seed)
     Pcg32 rng(seed, c);  // one stream per chunk: independent of the thread count
     for (size_t i = c * kChunk; i < std::min(n, (c + 1) * kChunk); ++i) {
       const Vec3 o = lo + extent * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
-      const float z = 1.0f - 2.0f * rng.next_float();
-      const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-      const float phi = 2.0f * std::numbers::pi_v<float> * rng.next_float();
-      rays[i] = {o, {r * std::cos(phi), r * std::sin(phi), z}};
+      rays[i] = {o, sample_uniform_sphere({rng.next_float(), rng.next_float()})};
     }
   });
   return rays;

@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "penumbra/core/vec.h"
+#include "penumbra/geometry/sphere_direction.h"  // sample_uniform_sphere
 
 namespace penumbra {
 
@@ -24,14 +25,6 @@ inline Vec3 sample_cosine_hemisphere(Vec2 u) {
   const Vec2 d = sample_concentric_disk(u);
   const float z = std::sqrt(std::fmax(0.0f, 1.0f - d.x * d.x - d.y * d.y));
   return {d.x, d.y, z};
-}
-
-/// Uniform direction on the unit sphere; pdf = 1 / (4 pi).
-inline Vec3 sample_uniform_sphere(Vec2 u) {
-  const float z = 1.0f - 2.0f * u.x;
-  const float r = std::sqrt(std::fmax(0.0f, 1.0f - z * z));
-  const float phi = 2.0f * std::numbers::pi_v<float> * u.y;
-  return {r * std::cos(phi), r * std::sin(phi), z};
 }
 
 }  // namespace penumbra
