@@ -14,8 +14,8 @@ never fixed silently. The output needs nothing but itself.
 import json
 import sys
 
-RENDER = {"resolution": None, "spp": 16, "max_depth": 8, "seed": 0,
-          "integrator": "whitted", "accel": "bvh", "background": [0.0, 0.0, 0.0]}
+RENDER = {"resolution": None, "spp": 256, "seed": 0,
+          "integrator": "path", "accel": "bvh", "background": [0.0, 0.0, 0.0]}
 
 
 def sub(a, b):

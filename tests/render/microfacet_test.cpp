@@ -442,7 +442,7 @@ void expect_consistent(const Material& m, Vec3 wo, uint64_t seed) {
     const auto s = m.sample(wo, rng.next_float(), {rng.next_float(), rng.next_float()});
     if (!s) continue;
     ++accepted;
-    ASSERT_FALSE(s->delta);
+    ASSERT_FALSE(s->is_specular());
     ASSERT_NEAR(length(s->wi), 1.0f, 1e-5f);
     ASSERT_LE(relative_difference(s->pdf, m.pdf(wo, s->wi)), 1e-3f);
     const Rgb f = m.eval(wo, s->wi);
@@ -487,7 +487,7 @@ TEST(Conductor, ZeroRoughnessIsAMirror) {
   EXPECT_NEAR(lobes[0].wi.x, -wo.x, 1e-7f);
   EXPECT_NEAR(lobes[0].weight.r, fresnel_schlick(0.5f, Rgb(0.5f)).r, 1e-6f);
   const auto s = m.sample(wo, 0.5f, {0.5f, 0.5f});
-  ASSERT_TRUE(s && s->delta);
+  ASSERT_TRUE(s && s->is_specular());
   EXPECT_NEAR(s->f.r * s->wi.z / s->pdf, lobes[0].weight.r, 1e-6f);
   EXPECT_EQ(ConductorMaterial(ConductorFresnel::schlick_f0(Rgb(0.5f)), 0.04f).has_non_specular(),
             true);

@@ -67,7 +67,7 @@ TEST(Shutter, BadIntervalsAreErrorsNamingTheKey) {
 }
 
 /// Returns each camera ray's time as its radiance and keeps every time it saw.
-class TimeIntegrator final : public Integrator {
+class TimeIntegrator final : public SamplingIntegrator {
  public:
   std::string name() const override { return "time"; }
   Rgb li(const Ray& ray, Sampler&, RayCounter&) const override {
@@ -85,14 +85,21 @@ class TimeIntegrator final : public Integrator {
 /// The times of the camera rays of a w x h render with `sampler` at `spp`, shutter [open, close].
 std::vector<float> render_times(const std::string& sampler, int w, int h, int spp, float open,
                                 float close) {
-  PinholeCamera camera({0, 0, 0}, {0, 0, 1}, {0, 1, 0}, 45.0f, w, h);
-  camera.set_shutter({open, close});
-  const TimeIntegrator integrator;
-  const auto s = make_sampler(sampler, spp, 7);
-  const auto filter = make_filter("box");
-  Film film(w, h);
-  render(camera, integrator, *s, FilterSampler(*filter), film, RenderOptions{});
-  return integrator.times();
+  RenderJob job(test::scene_from_text(fmt::format(
+      R"({{"camera": {{"type": "pinhole", "position": [0, 0, 0], "look_at": [0, 0, 1]}},
+          "render": {{"resolution": [{}, {}], "spp": {}, "seed": 7, "sampler": "{}"}},
+          "materials": {{"m": {{"type": "diffuse"}}}},
+          "shapes": [{{"type": "sphere", "center": [0, 0, 5], "radius": 1, "material": "m"}}]}})",
+      w, h, spp, sampler)));
+  auto camera = std::make_unique<PinholeCamera>(Vec3{0, 0, 0}, Vec3{0, 0, 1}, Vec3{0, 1, 0}, 45.0f,
+                                                w, h);
+  camera->set_shutter({open, close});
+  job.camera = std::move(camera);
+  auto integrator = std::make_unique<TimeIntegrator>();
+  const TimeIntegrator& ti = *integrator;
+  job.integrator = std::move(integrator);
+  job.run();
+  return ti.times();
 }
 
 // Through the render loop: the times of 4096 independent camera rays are uniform over the

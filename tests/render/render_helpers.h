@@ -7,6 +7,7 @@
 #include "penumbra/render/camera/camera_registry.h"
 #include "penumbra/render/film.h"
 #include "penumbra/render/integrator/integrator_registry.h"
+#include "penumbra/render/render_job.h"
 #include "penumbra/render/renderer.h"
 #include "penumbra/render/filter/filter.h"
 #include "penumbra/render/sampler/sampler_registry.h"
@@ -18,15 +19,9 @@ namespace penumbra::test {
 /// Renders `desc` with its own settings on `threads` workers (0 = all).
 inline RgbImage render_desc(const SceneDesc& desc, int threads = 0) {
   const ThreadLimit limit(threads);
-  const RenderSettings& rs = desc.render;
-  const World world(desc, rs.accel);
-  const auto camera = make_camera(desc.camera, rs.width, rs.height);
-  const auto integrator = make_integrator(rs.integrator, world, rs);
-  const auto sampler = make_sampler(rs.sampler, rs.spp, rs.seed);
-  const auto filter = make_filter(rs.filter);
-  Film film(rs.width, rs.height);
-  render(*camera, *integrator, *sampler, FilterSampler(*filter), film, RenderOptions{});
-  return film.resolve();
+  RenderJob job(desc);
+  job.run();
+  return job.film->resolve();
 }
 
 /// Parses scene JSON text (meshes relative to the repository root).

@@ -62,6 +62,7 @@ TEST(Whitted, CornellBoxLightWallsAndOrientation) {
   auto desc = test::bundled_scene("cornell-box.json");
   desc.render.width = desc.render.height = 64;
   desc.render.spp = 1;
+  desc.render.integrator = "whitted";
   const RgbImage img = render_desc(desc);
   // The light is near the top centre of the image (rows 8 to 10 at 64x64).
   int light_pixels = 0;

@@ -64,8 +64,8 @@ TEST(SceneLoader, LoadsCornellBox) {
   EXPECT_EQ(s.camera.get_float("vfov", 0), 39.307648f);
   EXPECT_EQ(s.render.width, 256);
   EXPECT_EQ(s.render.height, 256);
-  EXPECT_EQ(s.render.spp, 16);
-  EXPECT_EQ(s.render.integrator, "whitted");
+  EXPECT_EQ(s.render.spp, 256);
+  EXPECT_EQ(s.render.integrator, "path");
   EXPECT_EQ(s.materials.size(), 4u);
   ASSERT_EQ(s.shapes.size(), 8u);
   size_t triangles = 0;
@@ -157,7 +157,7 @@ TEST(SceneLoader, ReadsEveryRenderSetting) {
   EXPECT_EQ(s.render.width, 640);
   EXPECT_EQ(s.render.height, 360);
   EXPECT_EQ(s.render.spp, 64);
-  EXPECT_EQ(s.render.max_depth, 0);
+  EXPECT_EQ(s.render.max_depth, std::optional<int>(0));
   EXPECT_EQ(s.render.seed, 18446744073709551615ull);
   EXPECT_EQ(s.render.integrator, "path");
   EXPECT_EQ(s.render.accel, "kdtree:sah");

@@ -2,7 +2,6 @@
 /// The interface every spatial data structure for ray shooting implements.
 #include <cstddef>
 #include <memory>
-#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -44,15 +43,6 @@ class Accelerator {
   virtual bool occluded(const Ray& ray) const = 0;
   /// Statistics of the last build.
   virtual AccelStats stats() const = 0;
-
-  /// Closest hits for a batch of rays (a seam for packet, GPU and distributed back ends);
-  /// the default loops over `intersect`.
-  virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
-    for (size_t i = 0; i < rays.size(); ++i) {
-      hits[i] = Hit{};
-      intersect(rays[i], hits[i]);
-    }
-  }
 };
 
 }  // namespace penumbra

@@ -12,15 +12,13 @@
 #include "penumbra/accel/uniform_grid.h"
 #include "penumbra/accel/wide_bvh.h"
 #include "penumbra/core/error.h"
+#include "penumbra/core/registry.h"
 
 namespace penumbra {
 
 namespace {
 
-struct Entry {
-  AccelInfo info;
-  std::function<std::unique_ptr<Accelerator>(const ParamList&)> make;
-};
+using Factory = std::function<std::unique_ptr<Accelerator>(const ParamList&)>;
 
 template <class T>
 std::unique_ptr<Accelerator> create(const ParamList& p) {
@@ -42,28 +40,26 @@ std::unique_ptr<Accelerator> create_bvh(const ParamList& p) {
 }
 
 /// Every structure, written out explicitly: a new one is one line here.
-const std::vector<Entry>& entries() {
-  static const std::vector<Entry> all = {
-      {{"brute", "brute force: every primitive for every ray (the reference)"}, create<BruteForce>},
-      {{"bvh",
-        "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
-        "trav=2, build=binned|median|sweep"},
+const Registry<Factory>& registry() {
+  static const Registry<Factory> all = {
+      {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
+      {"bvh",
+       "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
+       "trav=2, build=binned|median|sweep",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
-      {{"bvh:median", "bvh built by object-median splits (build=median)"}, create_bvh},
-      {{"bvh:sweep", "bvh built by full-sweep SAH over all object partitions (build=sweep)"},
+      {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},
+      {"bvh:sweep", "bvh built by full-sweep SAH over all object partitions (build=sweep)",
        create_bvh},
-      {{"bvh2", "binary BVH (bvh:width=2), 32-byte nodes, nearer child first"}, create<Bvh>},
-      {{"bsp", "3D BSP by auto-partition (order=random|first|fewest-cuts, seed=1, depth=256)"},
+      {"bvh2", "binary BVH (bvh:width=2), 32-byte nodes, nearer child first", create<Bvh>},
+      {"bsp", "3D BSP by auto-partition (order=random|first|fewest-cuts, seed=1, depth=256)",
        create<BspTree>},
-      {{"grid", "uniform grid, exact cell overlap, 3D-DDA, mailbox (lambda=1)"},
-       create<UniformGrid>},
-      {{"octree", "octree, exact octant overlap, front-to-back walk, mailbox (leaf=16, depth=16)"},
+      {"grid", "uniform grid, exact cell overlap, 3D-DDA, mailbox (lambda=1)", create<UniformGrid>},
+      {"octree", "octree, exact octant overlap, front-to-back walk, mailbox (leaf=16, depth=16)",
        create<Octree>},
-      {{"bvh4", "4-wide BVH (bvh:width=4) collapsed from the binary one, SIMD box tests"},
+      {"bvh4", "4-wide BVH (bvh:width=4) collapsed from the binary one, SIMD box tests",
        create<WideBvh<4>>},
-      {{"kdtree",
-        "kd-tree, O(N log N) SAH build with perfect splits (sah|median|gap, ct=1, ci=0.2)"},
+      {"kdtree", "kd-tree, O(N log N) SAH build with perfect splits (sah|median|gap, ct=1, ci=0.2)",
        create<KdTree>},
   };
   return all;
@@ -74,7 +70,7 @@ const std::vector<Entry>& entries() {
 const std::vector<AccelInfo>& accelerator_list() {
   static const std::vector<AccelInfo> list = [] {
     std::vector<AccelInfo> l;
-    for (const auto& e : entries()) l.push_back(e.info);
+    for (const auto& e : registry().entries()) l.push_back({e.name, e.description});
     return l;
   }();
   return list;
@@ -82,12 +78,9 @@ const std::vector<AccelInfo>& accelerator_list() {
 
 std::unique_ptr<Accelerator> make_accelerator(std::string_view spec) {
   const ParamList params = ParamList::parse(spec);
-  for (const auto& e : entries())
-    if (e.info.name == params.name()) return e.make(params);
-  std::string names;
-  for (const auto& e : entries())
-    if (e.info.name.find(':') == std::string::npos)  // not the listed variants
-      names += (names.empty() ? "" : ", ") + e.info.name;
+  if (const Factory* make = registry().find(params.name())) return (*make)(params);
+  const std::string names = registry().valid_names(  // not the listed variants
+      [](const std::string& name) { return name.find(':') == std::string::npos; });
   throw Error(fmt::format("unknown acceleration structure '{}' (valid: {})", params.name(), names));
 }
 

@@ -2,22 +2,22 @@
 
 #include <functional>
 
-#include <fmt/format.h>
-
 #include "penumbra/accel2d/grid2d.h"
 #include "penumbra/accel2d/kdtree2d.h"
 #include "penumbra/accel2d/object_bsp.h"
 #include "penumbra/accel2d/quadtree2d.h"
 #include "penumbra/accel2d/segment_bsp.h"
-#include "penumbra/core/error.h"
 #include "penumbra/core/params.h"
+#include "penumbra/core/registry.h"
 
 namespace penumbra::lab2d {
 
 namespace {
 
-struct Entry {
-  Accel2DInfo info;
+/// What the registry keeps per structure: its input requirements and its factory.
+struct Maker {
+  bool segments_only;  ///< true when it takes segments only
+  bool disjoint;       ///< true when its theory needs disjoint input
   std::function<std::unique_ptr<Accel2D>(const ParamList&)> make;
 };
 
@@ -32,21 +32,24 @@ std::unique_ptr<Accel2D> create_brute(const ParamList& p) {
 }
 
 /// Every structure, written out explicitly: a new one is one line here.
-const std::vector<Entry>& entries() {
-  static const std::vector<Entry> all = {
-      {{"bsp", "2D BSP of segments by auto-partition (order=random|first|fewest-cuts, seed=1)",
-        true, true},
-       create<SegmentBsp>},
-      {{"objects", "BSP of disjoint convex objects at the leaves, edge lines (candidates=64)",
-        false, true},
-       create<ObjectBsp>},
-      {{"quadtree", "quadtree over segments (leaf=2, depth=12)", true, false}, create<Quadtree2D>},
-      {{"kdtree", "2D kd-tree over segments, median splits (leaf=2, depth=24)", true, false},
-       create<KdTree2D>},
-      {{"grid", "uniform 2D grid over segments, DDA walk (lambda=1, max=4096)", true, false},
-       create<Grid2D>},
-      {{"brute", "brute force: every shape for every ray (the reference)", false, false},
-       create_brute},
+const Registry<Maker>& registry() {
+  static const Registry<Maker> all = {
+      {"bsp",
+       "2D BSP of segments by auto-partition (order=random|first|fewest-cuts, seed=1)",
+       {true, true, create<SegmentBsp>}},
+      {"objects",
+       "BSP of disjoint convex objects at the leaves, edge lines (candidates=64)",
+       {false, true, create<ObjectBsp>}},
+      {"quadtree", "quadtree over segments (leaf=2, depth=12)", {true, false, create<Quadtree2D>}},
+      {"kdtree",
+       "2D kd-tree over segments, median splits (leaf=2, depth=24)",
+       {true, false, create<KdTree2D>}},
+      {"grid",
+       "uniform 2D grid over segments, DDA walk (lambda=1, max=4096)",
+       {true, false, create<Grid2D>}},
+      {"brute",
+       "brute force: every shape for every ray (the reference)",
+       {false, false, create_brute}},
   };
   return all;
 }
@@ -56,7 +59,8 @@ const std::vector<Entry>& entries() {
 const std::vector<Accel2DInfo>& accel2d_list() {
   static const std::vector<Accel2DInfo> list = [] {
     std::vector<Accel2DInfo> l;
-    for (const auto& e : entries()) l.push_back(e.info);
+    for (const auto& e : registry().entries())
+      l.push_back({e.name, e.description, e.factory.segments_only, e.factory.disjoint});
     return l;
   }();
   return list;
@@ -64,11 +68,7 @@ const std::vector<Accel2DInfo>& accel2d_list() {
 
 std::unique_ptr<Accel2D> make_accel2d(std::string_view spec) {
   const ParamList params = ParamList::parse(spec);
-  for (const auto& e : entries())
-    if (e.info.name == params.name()) return e.make(params);
-  std::string names;
-  for (const auto& e : entries()) names += (names.empty() ? "" : ", ") + e.info.name;
-  throw Error(fmt::format("unknown 2D structure '{}' (valid: {})", params.name(), names));
+  return registry().get(params.name(), "2D structure").make(params);
 }
 
 Hit2 Brute2D::shoot(const Ray2& ray, TraceLog* trace) const {

@@ -44,6 +44,42 @@ void Progress::update(size_t done) {
   std::fflush(stderr);
 }
 
+RenderProgressLine::RenderProgressLine() : tty_(isatty(STDERR_FILENO) != 0) {}
+
+void RenderProgressLine::print(const std::string& text, bool force) {
+  const double t = timer_.elapsed_s();
+  // A terminal redraws at most 10 times a second; a log gets a line every 5 seconds.
+  if (!force && t - last_print_s_ < (tty_ ? 0.1 : 5.0)) return;
+  last_print_s_ = t;
+  printed_ = true;
+  if (tty_) fmt::print(stderr, "\r{}   ", text);
+  else fmt::print(stderr, "{}\n", text);
+  std::fflush(stderr);
+}
+
+void RenderProgressLine::update(const RenderProgress& p) {
+  std::lock_guard lock(mutex_);
+  if (p.fraction < last_fraction_) return;  // a late report from another thread
+  last_fraction_ = p.fraction;
+  const double eta = p.fraction > 0 ? p.elapsed_s * (1.0 - p.fraction) / p.fraction : NAN;
+  const double mrays = p.elapsed_s > 0 ? double(p.rays) / p.elapsed_s * 1e-6 : 0.0;
+  std::string text = fmt::format("render: {:5.1f}%  {}/{} spp  elapsed {}  ETA {}  {:.2f} Mrays/s",
+                                 p.fraction * 100.0, p.spp_done, p.spp_target,
+                                 format_duration(p.elapsed_s), format_duration(eta), mrays);
+  if (p.mean_rel_error >= 0) text += fmt::format("  error {:.4f}", p.mean_rel_error);
+  print(text, p.fraction >= 1.0);
+}
+
+void RenderProgressLine::preprocess(const char* what, double fraction) {
+  std::lock_guard lock(mutex_);
+  print(fmt::format("{}: {:5.1f}%", what, fraction * 100.0), fraction >= 1.0);
+}
+
+void RenderProgressLine::finish() {
+  std::lock_guard lock(mutex_);
+  if (tty_ && printed_) fmt::print(stderr, "\n");
+}
+
 void Progress::finish() {
   std::lock_guard lock(mutex_);
   if (tty_) fmt::print(stderr, "\n");

@@ -2,8 +2,9 @@
 
 #include <atomic>
 #include <csignal>
-#include <tuple>
 #include <cstdio>
+#include <mutex>
+#include <tuple>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -15,12 +16,7 @@
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/image/image_io.h"
-#include "penumbra/render/camera/camera_registry.h"
-#include "penumbra/render/integrator/integrator_registry.h"
-#include "penumbra/render/renderer.h"
-#include "penumbra/render/filter/filter.h"
-#include "penumbra/render/sampler/sampler_registry.h"
-#include "penumbra/render/world.h"
+#include "penumbra/render/render_job.h"
 #include "penumbra/scene/scene_loader.h"
 
 namespace penumbra::app {
@@ -30,6 +26,26 @@ namespace {
 std::atomic<bool> g_interrupted{false};
 
 extern "C" void on_interrupt(int) { g_interrupted.store(true); }
+
+/// Installs the interrupt handler for SIGINT and SIGTERM while alive.
+class InterruptGuard {
+ public:
+  InterruptGuard() {
+    g_interrupted.store(false);
+    old_int_ = std::signal(SIGINT, on_interrupt);
+    old_term_ = std::signal(SIGTERM, on_interrupt);
+  }
+  ~InterruptGuard() {
+    std::signal(SIGINT, old_int_);
+    std::signal(SIGTERM, old_term_);
+  }
+  InterruptGuard(const InterruptGuard&) = delete;
+  InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+ private:
+  void (*old_int_)(int);
+  void (*old_term_)(int);
+};
 
 /// Parses "WxH".
 std::pair<int, int> parse_resolution(const std::string& text) {
@@ -41,6 +57,16 @@ std::pair<int, int> parse_resolution(const std::string& text) {
   return {w, h};
 }
 
+const char* stop_text(StopReason r) {
+  switch (r) {
+    case StopReason::kTimeLimit: return "time limit";
+    case StopReason::kTargetError: return "error target";
+    case StopReason::kCancelled: return "interrupted";
+    case StopReason::kComplete:
+    default: return "complete";
+  }
+}
+
 }  // namespace
 
 void add_render_command(CLI::App& app) {
@@ -49,20 +75,33 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene file (JSON; see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", args->output, "Output image: .png (8-bit sRGB), .exr or .pfm")
       ->required();
-  cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the scene)")
-      ->check(CLI::Range(1, 1 << 20));
+  cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the scene; the most a time- "
+                                      "or error-limited render takes)")
+      ->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   cmd->add_option("--seed", args->seed, "Random seed (overrides the scene)");
   cmd->add_option("--accel", args->accel, "Acceleration structure NAME[:params] (see accel-bench)");
-  cmd->add_option("--integrator", args->integrator, "Integrator NAME[:params]: raycast, whitted");
+  cmd->add_option("--integrator", args->integrator,
+                  "Integrator NAME[:params]: raycast, whitted, distribution, path");
   cmd->add_option("--sampler", args->sampler,
                   "Pixel sampler: independent (random), regular, jittered, sobol");
   cmd->add_option("--filter", args->filter,
                   "Pixel filter NAME[:params]: box, tent, gaussian, mitchell");
   cmd->add_option("--resolution", args->resolution, "Image size WxH (overrides the scene)");
   cmd->add_option("--max-depth", args->max_depth, "Maximum bounces (overrides the scene)")
-      ->check(CLI::Range(0, 1000));
+      ->check(CLI::Range(0, 1000000));
+  cmd->add_option("--time-limit", args->time_limit,
+                  "Stop after about this many seconds of rendering, keeping whole passes")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--checkpoint", args->checkpoint,
+                  "Write the image so far every this many seconds (atomically)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--target-error", args->target_error,
+                  "Stop when the image's mean relative standard error falls below this")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--variance", args->variance,
+                  "Also write the per-pixel variance of the mean to this image (.exr or .pfm)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress display or summary");
   cmd->callback([args] {
     const int code = run_render(*args);
@@ -72,7 +111,13 @@ void add_render_command(CLI::App& app) {
 
 int run_render(const RenderArgs& args) {
   const Timer wall;
-  image_format_for(args.output);  // reject a bad output name before any work
+  // Reject bad output names before any work.
+  image_format_for(args.output);
+  if (args.variance) {
+    if (image_format_for(*args.variance) == ImageFormat::kPng)
+      throw Error("--variance: the variance image needs a float format (.exr or .pfm), got '" +
+                  *args.variance + "'");
+  }
   const ThreadLimit limit(args.threads.value_or(0));
 
   SceneDesc desc = load_scene(args.scene);
@@ -86,48 +131,69 @@ int run_render(const RenderArgs& args) {
   if (args.max_depth) rs.max_depth = *args.max_depth;
   if (args.resolution) std::tie(rs.width, rs.height) = parse_resolution(*args.resolution);
 
-  const World world(desc, rs.accel);
-  const auto camera = make_camera(desc.camera, rs.width, rs.height);
-  const auto integrator = make_integrator(rs.integrator, world, rs);
-  const auto sampler = make_sampler(rs.sampler, rs.spp, rs.seed);
-  const auto filter = make_filter(rs.filter);
-  const FilterSampler filter_sampler(*filter);
-  const AccelStats accel = world.accelerator().stats();
+  RenderJob job(std::move(desc));
+  const RenderSettings& settings = job.scene.render;  // desc is moved from
+  const AccelStats accel = job.world->accelerator().stats();
   if (!args.quiet)
-    fmt::print(stderr, "{}: {} primitives, {} {}x{} at {} spp ({}, {} filter), {} threads, accel {} built in {}\n",
-               args.scene, world.primitives().size(), integrator->name(), rs.width, rs.height,
-               rs.spp, rs.sampler, filter->name(), thread_count(), world.accelerator().name(),
+    fmt::print(stderr,
+               "{}: {} primitives, {} lights, {} {}x{} at {} spp ({}, {} filter), {} threads, "
+               "accel {} built in {}\n",
+               args.scene, job.world->primitives().size(), job.world->lights().size(),
+               job.integrator->name(), settings.width, settings.height, settings.spp, settings.sampler,
+               job.filter->name(), thread_count(), job.world->accelerator().name(),
                format_duration(accel.build_ms * 1e-3));
 
-  Film film(rs.width, rs.height);
-  RenderOptions options;
+  RenderOptions& options = job.options;
   options.cancel = &g_interrupted;
-  g_interrupted.store(false);
-  std::unique_ptr<Progress> bar;
-  if (!args.quiet) {
-    const size_t tiles = size_t((rs.width + options.tile_size - 1) / options.tile_size) *
-                         size_t((rs.height + options.tile_size - 1) / options.tile_size);
-    bar = std::make_unique<Progress>("render", tiles);
-    options.on_tile = [&bar](size_t done, size_t) { bar->update(done); };
+  options.time_limit_s = args.time_limit.value_or(0.0);
+  options.target_error = args.target_error.value_or(0.0);
+  if (args.checkpoint) {
+    options.checkpoint_s = *args.checkpoint;
+    options.on_checkpoint = [&](const Film& film, int spp) {
+      write_image(film.resolve(), args.output);
+      if (!args.quiet) fmt::print(stderr, "\ncheckpoint: {} spp to {}\n", spp, args.output);
+    };
   }
-  const auto old_handler = std::signal(SIGINT, on_interrupt);
-  const RenderStats stats = render(*camera, *integrator, *sampler, filter_sampler, film, options);
-  std::signal(SIGINT, old_handler);
-  if (bar) bar->finish();
+  std::unique_ptr<RenderProgressLine> line;
+  if (!args.quiet) {
+    line = std::make_unique<RenderProgressLine>();
+    options.on_progress = [&line](const RenderProgress& p) { line->update(p); };
+    options.on_preprocess = [&line](const char* what, double f) { line->preprocess(what, f); };
+  }
+
+  RenderStats stats;
+  {
+    const InterruptGuard guard;
+    stats = job.run();
+  }
+  if (line) line->finish();
 
   // Finished work is always written, atomically; an interrupted render says so and exits 130.
-  write_image(film.resolve(), args.output);
+  write_image(job.film->resolve(), args.output);
+  if (args.variance) write_image(job.film->variance(), *args.variance);
   if (!stats.complete()) {
-    fmt::print(stderr, "interrupted: wrote {} of {} tiles to {}\n", stats.tiles_done,
-               stats.tiles_total, args.output);
+    fmt::print(stderr, "interrupted: wrote {} spp to {} ({} of {} tiles also finished the next pass)\n",
+               stats.spp_done, args.output, stats.tiles_done, stats.tiles_total);
     return 130;
   }
   if (!args.quiet) {
-    fmt::print(stderr, "wrote {}\n", args.output);
-    fmt::print(stderr, "render {}  (total {}), {} rays, {:.2f} Mrays/s\n",
-               format_duration(stats.seconds), format_duration(wall.elapsed_s()), stats.rays,
-               stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0);
-    fmt::print(stderr, "accel {}: {}\n", world.accelerator().name(), format_accel_stats(accel));
+    const double secs = stats.seconds > 0 ? stats.seconds : 1e-9;
+    const double samples = double(settings.width) * double(settings.height) * double(stats.spp_done);
+    fmt::print(stderr, "wrote {} ({} spp of {}, {}{})\n", args.output, stats.spp_done,
+               stats.spp_target, stop_text(stats.stop),
+               stats.mean_rel_error >= 0 ? fmt::format(", mean relative error {:.4f}",
+                                                       stats.mean_rel_error)
+                                         : "");
+    if (stats.preprocess_seconds > 0.01)
+      fmt::print(stderr, "preprocess {}\n", format_duration(stats.preprocess_seconds));
+    fmt::print(stderr,
+               "render {}  (total {}), {} passes, {:.3f} Msamples/s, {} rays, {:.2f} Mrays/s, "
+               "traversal {:.0f}% of tile time\n",
+               format_duration(stats.seconds), format_duration(wall.elapsed_s()), stats.passes,
+               samples / secs * 1e-6, stats.rays, double(stats.rays) / secs * 1e-6,
+               stats.traversal_share * 100.0);
+    fmt::print(stderr, "accel {}: {}\n", job.world->accelerator().name(),
+               format_accel_stats(accel));
   }
   return 0;
 }

@@ -16,6 +16,8 @@ struct RenderArgs {
   std::optional<int> spp, threads, max_depth;
   std::optional<uint64_t> seed;
   std::optional<std::string> accel, integrator, sampler, filter, resolution;
+  std::optional<double> time_limit, checkpoint, target_error;
+  std::optional<std::string> variance;  ///< where to write the per-pixel variance image
   bool quiet = false;
 };
 

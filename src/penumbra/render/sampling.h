@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "penumbra/core/bounds.h"
 #include "penumbra/core/vec.h"
 #include "penumbra/geometry/sphere_direction.h"  // sample_uniform_sphere
 
@@ -25,6 +26,26 @@ inline Vec3 sample_cosine_hemisphere(Vec2 u) {
   const Vec2 d = sample_concentric_disk(u);
   const float z = std::sqrt(std::fmax(0.0f, 1.0f - d.x * d.x - d.y * d.y));
   return {d.x, d.y, z};
+}
+
+/// A sphere enclosing the box `b` (centre and radius; radius 0 for an empty box).
+inline void bounding_sphere(const Bounds3& b, Vec3& center, float& radius) {
+  if (!(b.lo.x <= b.hi.x && b.lo.y <= b.hi.y && b.lo.z <= b.hi.z)) {
+    center = {}, radius = 0.0f;
+    return;
+  }
+  center = (b.lo + b.hi) * 0.5f;
+  radius = length(b.hi - center);
+}
+
+/// Power heuristic with exponent 2 (Veach, Guibas 1995, "Optimally Combining Sampling Techniques
+/// for Monte Carlo Rendering"): the weight of a sample drawn by the strategy of density f_pdf (times
+/// its sample count nf) against the strategy of density g_pdf (times ng).
+inline float power_heuristic(float nf, float f_pdf, float ng, float g_pdf) {
+  const float f = nf * f_pdf, g = ng * g_pdf;
+  if (std::isinf(f * f)) return 1.0f;
+  const float sum = f * f + g * g;
+  return sum > 0.0f ? f * f / sum : 0.0f;
 }
 
 }  // namespace penumbra

@@ -5,10 +5,12 @@
 #include "penumbra/core/color.h"
 #include "penumbra/core/ray.h"
 #include "penumbra/geometry/float_error.h"
+#include "penumbra/render/light/light.h"
 
 namespace penumbra {
 
 class Material;
+class Light;
 
 /// A surface point seen along a ray.
 struct SurfaceInteraction {
@@ -23,7 +25,11 @@ struct SurfaceInteraction {
   uint32_t prim = 0; ///< primitive id
   uint32_t shape = 0;
   const Material* material = nullptr;
+  const Light* area_light = nullptr;  ///< the area light of an emissive shape, else null
   Rgb emitted;       ///< radiance emitted towards wo (zero unless an emitter's lit side faces wo)
+
+  /// This point as a point of its area light (for Light::pdf_li and Light::l).
+  LightPoint light_point() const { return {p, ng, prim}; }
 
   /// World direction to the local shading frame (z = ns).
   Vec3 to_local(Vec3 w) const { return {dot(w, ss), dot(w, ts), dot(w, ns)}; }
@@ -36,6 +42,12 @@ struct SurfaceInteraction {
     r.d = d;
     r.time = time;
     return r;
+  }
+  /// The shadow ray towards a light sample: to its point, or unbounded for infinite and
+  /// directional lights (distance kInfinity).
+  Ray shadow_ray(const LightSample& ls, float time) const {
+    if (std::isinf(ls.distance)) return spawn_ray(ls.wi, time);
+    return spawn_ray_to(p + ls.wi * ls.distance, time);
   }
   /// A ray from the surface towards `target` that stops just short of it (for shadow rays).
   Ray spawn_ray_to(Vec3 target, float time) const {

@@ -1,10 +1,16 @@
 #include "penumbra/render/world.h"
 
+#include <chrono>
 #include <cmath>
+#if defined(__x86_64__)
+#include <x86intrin.h>
+#endif
 #include <numbers>
 
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
+#include "penumbra/render/light/area_light.h"
+#include "penumbra/render/light/uniform_infinite_light.h"
 #include "penumbra/render/light/light_registry.h"
 #include "penumbra/render/material/material_registry.h"
 
@@ -83,8 +89,27 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
     shapes_.push_back(info);
   }
 
+  // Area lights of the emissive shapes, then the background as a constant environment.
+  first_area_light_ = lights_.size();
+  for (const Emitter& e : emitters_) {
+    lights_.push_back(std::make_unique<AreaLight>(*this, e));
+    shapes_[e.shape].area_light = lights_.back().get();
+  }
+  if (!background_.is_black()) lights_.push_back(std::make_unique<UniformInfiniteLight>(background_));
+  for (const auto& light : lights_) {
+    light->preprocess(prims_.bounds());
+    light_list_.push_back(light.get());
+    if (light->kind() == LightKind::kInfinite) infinite_lights_.push_back(light.get());
+  }
+
   accel_ = make_accelerator(accel_spec);
   accel_->build(prims_);
+}
+
+Rgb World::escaped(const Ray& ray) const {
+  Rgb l;
+  for (const Light* light : infinite_lights_) l += light->le(ray);
+  return l;
 }
 
 Vec3 World::area_normal(uint32_t prim) const {
@@ -99,17 +124,33 @@ Vec3 World::area_normal(uint32_t prim) const {
   return shapes_[prims_.origin(prim).shape].flip_normal ? -n : n;
 }
 
+uint64_t tick_count() {
+#if defined(__x86_64__)
+  return __rdtsc();
+#else
+  return uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                      std::chrono::steady_clock::now().time_since_epoch())
+                      .count());
+#endif
+}
+
 bool World::intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const {
   ++counter.rays;
   Hit hit;
-  if (!accel_->intersect(ray, hit)) return false;
+  const uint64_t t0 = tick_count();
+  const bool found = accel_->intersect(ray, hit);
+  counter.traversal_ticks += tick_count() - t0;
+  if (!found) return false;
   interaction(ray, hit, si);
   return true;
 }
 
 bool World::occluded(const Ray& ray, RayCounter& counter) const {
   ++counter.rays;
-  return accel_->occluded(ray);
+  const uint64_t t0 = tick_count();
+  const bool blocked = accel_->occluded(ray);
+  counter.traversal_ticks += tick_count() - t0;
+  return blocked;
 }
 
 void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) const {
@@ -177,8 +218,8 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
   }
   orthonormal_basis(si.ns, si.ss, si.ts);
   // Emission leaves the front side (the geometric normal's) unless the emitter is two-sided.
-  si.emitted = {};
-  if (shape.emission && (shape.two_sided || dot(si.ng, si.wo) > 0.0f)) si.emitted = *shape.emission;
+  si.area_light = shape.area_light;
+  si.emitted = shape.area_light ? shape.area_light->l(si.light_point(), si.wo) : Rgb{};
 }
 
 }  // namespace penumbra

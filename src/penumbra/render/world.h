@@ -1,6 +1,7 @@
 #pragma once
 /// The world a renderer traces: the scene's primitives, an acceleration structure over them, the
-/// materials, the lights and the emissive shapes.
+/// materials and every light: the scene's point, directional and environment lights, one area
+/// light per emissive shape, and the background as a constant environment light.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -16,10 +17,15 @@
 
 namespace penumbra {
 
-/// Rays traced by one thread (summed by the renderer).
+/// Rays traced by one thread (summed by the renderer), and the clock ticks spent tracing them.
 struct RayCounter {
   uint64_t rays = 0;
+  uint64_t traversal_ticks = 0;  ///< in tick_count() units
 };
+
+/// A cheap monotonic tick (the time-stamp counter on x86-64, else nanoseconds), for the share of
+/// render time spent in traversal: only ratios of ticks are used.
+uint64_t tick_count();
 
 /// An emissive shape: its primitives (ids first .. first + count - 1) emit `radiance`.
 struct Emitter {
@@ -41,6 +47,8 @@ class World {
   bool occluded(const Ray& ray, RayCounter& counter) const;
   /// Completes the surface interaction of a hit found by the accelerator.
   void interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) const;
+  /// Radiance arriving along a ray that left the scene: the sum of the infinite lights' Le.
+  Rgb escaped(const Ray& ray) const;
 
   /// Area times unit front normal of a planar primitive (zero vector for a sphere); at time 0 for
   /// a moving one (emitters, its users, never move).
@@ -48,15 +56,25 @@ class World {
 
   const PrimitiveSet& primitives() const { return prims_; }
   const Accelerator& accelerator() const { return *accel_; }
-  const std::vector<std::unique_ptr<Light>>& lights() const { return lights_; }
+  /// Every light: the scene's, then the area lights (in emitter order), then the background.
+  const std::vector<const Light*>& lights() const { return light_list_; }
+  /// The infinite lights (environment maps, the background), a subset of lights().
+  const std::vector<const Light*>& infinite_lights() const { return infinite_lights_; }
+  /// The area light of emitter i of emitters().
+  const Light& area_light(size_t emitter) const { return *lights_[first_area_light_ + emitter]; }
+  /// The emissive shapes.
   const std::vector<Emitter>& emitters() const { return emitters_; }
+  /// The scene's background radiance (also an infinite light when not black).
   Rgb background() const { return background_; }
+  /// Bounds of the scene's geometry.
+  const Bounds3& bounds() const { return prims_.bounds(); }
 
  private:
   /// Per-shape data the interaction needs beyond the primitive set.
   struct ShapeInfo {
     const Material* material = nullptr;
     std::optional<Rgb> emission;
+    const Light* area_light = nullptr;  ///< when emissive
     bool two_sided = false;
     bool flip_normal = false;  ///< transform swaps handedness: the front side flips
     int mesh = -1;             ///< index into meshes_ for shading normals and uvs, or -1
@@ -66,7 +84,9 @@ class World {
   PrimitiveSet prims_;
   std::unique_ptr<Accelerator> accel_;
   std::vector<std::unique_ptr<Material>> materials_;
-  std::vector<std::unique_ptr<Light>> lights_;
+  std::vector<std::unique_ptr<Light>> lights_;  ///< owned, in the order of light_list_
+  std::vector<const Light*> light_list_, infinite_lights_;
+  size_t first_area_light_ = 0;
   std::vector<ShapeInfo> shapes_;
   std::vector<TriangleMesh> meshes_;  ///< world-space normals and uvs (positions dropped)
   std::vector<Emitter> emitters_;

@@ -19,7 +19,11 @@ namespace penumbra {
 struct RenderSettings {
   int width = 256, height = 256;
   int spp = 1;
-  int max_depth = 8;
+  /// Maximum bounces when the scene or the command line sets it; unset, each integrator has its
+  /// own default (8 for whitted and distribution, unbounded for path).
+  std::optional<int> max_depth;
+  /// The bound of integrators that need one when none is set.
+  static constexpr int kDefaultMaxDepth = 8;
   uint64_t seed = 0;
   std::string integrator = "whitted";
   std::string accel = "bvh";

@@ -67,11 +67,21 @@ std::vector<MaterialDesc> parse_materials(json& v, const JsonPlace& place) {
   return out;
 }
 
-std::vector<SceneParams> parse_lights(json& v, const JsonPlace& place) {
+// Lights: an array of {"type": ..., parameters}. The parameters that name files ("map", "file")
+// are resolved here relative to `base_dir` (the scene file's folder) unless absolute, as shapes'
+// mesh files are, so that a light reads them wherever the program runs; the light checks them.
+std::vector<SceneParams> parse_lights(json& v, const JsonPlace& place,
+                                      const std::string& base_dir) {
   json_array(v, place);
   std::vector<SceneParams> out;
   for (size_t i = 0; i < v.size(); ++i) {
     const JsonPlace at = place.index(i);
+    for (const char* key : {"map", "file"}) {
+      if (!v[i].is_object() || !v[i].contains(key) || !v[i][key].is_string()) continue;
+      const std::filesystem::path file(v[i][key].get<std::string>());
+      if (!file.empty() && file.is_relative() && !base_dir.empty())
+        v[i][key] = (std::filesystem::path(base_dir) / file).lexically_normal().string();
+    }
     out.emplace_back(std::move(v[i]), at.file, at.path);
   }
   return out;
@@ -97,7 +107,8 @@ SceneDesc parse_scene(const std::string& json_text, const std::string& file_name
     scene.render = parse_render(*r, place.key("render"));
   if (json_find(root, "materials"))
     scene.materials = parse_materials(root["materials"], place.key("materials"));
-  if (json_find(root, "lights")) scene.lights = parse_lights(root["lights"], place.key("lights"));
+  if (json_find(root, "lights"))
+    scene.lights = parse_lights(root["lights"], place.key("lights"), base_dir);
 
   std::set<std::string> material_names;
   for (const MaterialDesc& m : scene.materials) material_names.insert(m.name);

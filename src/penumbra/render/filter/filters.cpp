@@ -5,7 +5,7 @@
 
 #include <fmt/format.h>
 
-#include "penumbra/core/error.h"
+#include "penumbra/core/registry.h"
 
 namespace penumbra {
 
@@ -58,10 +58,6 @@ float MitchellFilter::eval(float x) const {
 namespace {
 
 using Factory = std::function<std::unique_ptr<Filter>(const ParamList&)>;
-struct Entry {
-  FilterInfo info;
-  Factory make;
-};
 
 template <class T>
 std::unique_ptr<Filter> create(const ParamList& p) {
@@ -69,12 +65,12 @@ std::unique_ptr<Filter> create(const ParamList& p) {
 }
 
 /// Every filter, written out explicitly: a new one is one line here.
-const std::vector<Entry>& entries() {
-  static const std::vector<Entry> all = {
-      {{"box", "box of half-width radius (0.5: the pixel square)"}, create<BoxFilter>},
-      {{"tent", "triangle of half-width radius (1)"}, create<TentFilter>},
-      {{"gaussian", "Gaussian of sigma (0.5) cut at radius (1.5)"}, create<GaussianFilter>},
-      {{"mitchell", "Mitchell-Netravali cubic, b = c = 1/3, radius 2"}, create<MitchellFilter>},
+const Registry<Factory>& registry() {
+  static const Registry<Factory> all = {
+      {"box", "box of half-width radius (0.5: the pixel square)", create<BoxFilter>},
+      {"tent", "triangle of half-width radius (1)", create<TentFilter>},
+      {"gaussian", "Gaussian of sigma (0.5) cut at radius (1.5)", create<GaussianFilter>},
+      {"mitchell", "Mitchell-Netravali cubic, b = c = 1/3, radius 2", create<MitchellFilter>},
   };
   return all;
 }
@@ -84,7 +80,7 @@ const std::vector<Entry>& entries() {
 const std::vector<FilterInfo>& filter_list() {
   static const std::vector<FilterInfo> list = [] {
     std::vector<FilterInfo> l;
-    for (const auto& e : entries()) l.push_back(e.info);
+    for (const auto& e : registry().entries()) l.push_back({e.name, e.description});
     return l;
   }();
   return list;
@@ -92,11 +88,7 @@ const std::vector<FilterInfo>& filter_list() {
 
 std::unique_ptr<Filter> make_filter(std::string_view spec) {
   const ParamList params = ParamList::parse(spec);
-  for (const auto& e : entries())
-    if (e.info.name == params.name()) return e.make(params);
-  std::string names;
-  for (const auto& e : entries()) names += (names.empty() ? "" : ", ") + e.info.name;
-  throw Error(fmt::format("unknown filter '{}' (valid: {})", params.name(), names));
+  return registry().get(params.name(), "filter")(params);
 }
 
 }  // namespace penumbra

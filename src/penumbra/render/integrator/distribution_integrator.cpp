@@ -5,17 +5,10 @@
 #include <fmt/format.h>
 
 #include "penumbra/render/material/material.h"
+#include "penumbra/render/sampling.h"
 
 namespace penumbra {
 
-namespace {
-/// Power heuristic with exponent 2 for a sample of strategy a against strategy b, each density
-/// already multiplied by its sample count.
-float power_heuristic(float a, float b) {
-  const float a2 = a * a, b2 = b * b;
-  return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
-}
-}  // namespace
 
 DistributionIntegrator::DistributionIntegrator(const World& world, const ParamList& params,
                                                int max_depth)
@@ -28,10 +21,9 @@ DistributionIntegrator::DistributionIntegrator(const World& world, const ParamLi
   strata_x_ = static_cast<int>(std::sqrt(double(light_samples_)));
   while (light_samples_ % strata_x_ != 0) --strata_x_;
   strata_y_ = light_samples_ / strata_x_;
-  for (const Emitter& e : world.emitters()) {
-    if (light_of_shape_.size() <= e.shape) light_of_shape_.resize(e.shape + 1, -1);
-    light_of_shape_[e.shape] = static_cast<int>(area_lights_.size());
-    area_lights_.push_back(std::make_unique<AreaLight>(world, e));
+  for (const Light* light : world.lights()) {
+    if (light->is_delta()) delta_lights_.push_back(light);
+    else if (light->kind() == LightKind::kArea) area_lights_.push_back(light);
   }
 }
 
@@ -49,16 +41,16 @@ Rgb DistributionIntegrator::direct(const SurfaceInteraction& si, Vec3 wo, float 
   const Material& m = *si.material;
   Rgb sum;
   // Point lights: one exact shadow ray each.
-  for (const auto& light : world_.lights()) {
+  for (const Light* light : delta_lights_) {
     const LightSample ls = light->sample_li(si.p, sampler.get_2d());
     if (ls.li.is_black()) continue;
     const Rgb f = m.eval(wo, si.to_local(ls.wi));
     if (f.is_black()) continue;
-    if (world_.occluded(si.spawn_ray_to(si.p + ls.wi * ls.distance, time), counter)) continue;
+    if (world_.occluded(si.shadow_ray(ls, time), counter)) continue;
     sum += f * ls.li * (std::fabs(dot(ls.wi, si.ns)) / ls.pdf);
   }
   // Area lights: light_samples jittered points each.
-  for (const auto& light : area_lights_) {
+  for (const Light* light : area_lights_) {
     Rgb light_sum;
     for (int k = 0; k < light_samples_; ++k) {
       const Vec2 u = sampler.get_2d();
@@ -69,10 +61,10 @@ Rgb DistributionIntegrator::direct(const SurfaceInteraction& si, Vec3 wo, float 
       const Vec3 wi = si.to_local(ls.wi);
       const Rgb f = m.eval(wo, wi);
       if (f.is_black()) continue;
-      if (world_.occluded(si.spawn_ray_to(si.p + ls.wi * ls.distance, time), counter)) continue;
+      if (world_.occluded(si.shadow_ray(ls, time), counter)) continue;
       // At glossy surfaces BSDF sampling also reaches this light: weight the two strategies.
-      const float w = m.is_glossy() ? power_heuristic(float(light_samples_) * ls.pdf,
-                                                      float(glossy_samples_) * m.pdf(wo, wi))
+      const float w = m.is_glossy() ? power_heuristic(float(light_samples_), ls.pdf,
+                                                      float(glossy_samples_), m.pdf(wo, wi))
                                     : 1.0f;
       light_sum += f * ls.li * (std::fabs(dot(ls.wi, si.ns)) * w / ls.pdf);
     }
@@ -84,7 +76,7 @@ Rgb DistributionIntegrator::direct(const SurfaceInteraction& si, Vec3 wo, float 
 Rgb DistributionIntegrator::trace(const Ray& ray, int depth, float bsdf_pdf, Sampler& sampler,
                                   RayCounter& counter) const {
   SurfaceInteraction si;
-  if (!world_.intersect(ray, si, counter)) return world_.background();
+  if (!world_.intersect(ray, si, counter)) return world_.escaped(ray);
   MaterialScratch scratch;
   si.material = &si.material->at(si, scratch);  // textures evaluated at the hit
   Rgb radiance;
@@ -92,10 +84,9 @@ Rgb DistributionIntegrator::trace(const Ray& ray, int depth, float bsdf_pdf, Sam
   // sample it is weighted against the light samples that also reached it.
   if (!si.emitted.is_black()) {
     float w = 1.0f;
-    const int light = si.shape < light_of_shape_.size() ? light_of_shape_[si.shape] : -1;
-    if (bsdf_pdf > 0.0f && light >= 0) {
-      const float light_pdf = area_lights_[size_t(light)]->pdf_li(ray.o, si.p, si.ng);
-      w = power_heuristic(float(glossy_samples_) * bsdf_pdf, float(light_samples_) * light_pdf);
+    if (bsdf_pdf > 0.0f && si.area_light) {
+      const float light_pdf = si.area_light->pdf_li(ray.o, ray.d, si.light_point());
+      w = power_heuristic(float(glossy_samples_), bsdf_pdf, float(light_samples_), light_pdf);
     }
     radiance += si.emitted * w;
   }
@@ -121,7 +112,7 @@ Rgb DistributionIntegrator::trace(const Ray& ray, int depth, float bsdf_pdf, Sam
       if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) continue;
       const Vec3 wi = si.to_world(bs->wi);
       const Rgb weight = bs->f * (std::fabs(bs->wi.z) / bs->pdf);
-      glossy += weight * trace(si.spawn_ray(wi, ray.time), depth + 1, bs->delta ? 0.0f : bs->pdf,
+      glossy += weight * trace(si.spawn_ray(wi, ray.time), depth + 1, bs->is_specular() ? 0.0f : bs->pdf,
                                sampler, counter);
     }
     radiance += glossy / float(glossy_samples_);

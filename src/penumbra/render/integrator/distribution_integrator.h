@@ -6,7 +6,7 @@
 
 #include "penumbra/core/params.h"
 #include "penumbra/render/integrator/integrator.h"
-#include "penumbra/render/light/area_light.h"
+#include "penumbra/render/light/light.h"
 
 namespace penumbra {
 
@@ -17,9 +17,10 @@ namespace penumbra {
 /// lights; their estimates are combined by multiple importance sampling with the power heuristic
 /// (Veach, Guibas 1995, "Optimally Combining Sampling Techniques for Monte Carlo Rendering"), so an
 /// emitter reflected in a glossy surface is counted once. Diffuse surfaces take direct light only
-/// (no indirect diffuse: that is path tracing). Parameters: light_samples (default 4),
+/// (no indirect diffuse: that is path tracing). Infinite lights are only seen, not sampled (the
+/// background of rays that miss). Parameters: light_samples (default 4),
 /// glossy_samples (default 1), max_depth (else the scene's).
-class DistributionIntegrator final : public Integrator {
+class DistributionIntegrator final : public SamplingIntegrator {
  public:
   DistributionIntegrator(const World& world, const ParamList& params, int max_depth);
   std::string name() const override;
@@ -36,8 +37,8 @@ class DistributionIntegrator final : public Integrator {
   const World& world_;
   int max_depth_, light_samples_, glossy_samples_;
   int strata_x_, strata_y_;  ///< light_samples = strata_x * strata_y
-  std::vector<std::unique_ptr<AreaLight>> area_lights_;
-  std::vector<int> light_of_shape_;  ///< area light index per shape, or -1
+  std::vector<const Light*> delta_lights_;  ///< point and directional lights: one sample each
+  std::vector<const Light*> area_lights_;   ///< the world's area lights: light_samples each
 };
 
 }  // namespace penumbra

@@ -1,21 +1,43 @@
 #pragma once
-/// Integrators estimate the radiance arriving along a camera ray.
+/// Integrators solve for the image: each owns its render (pbrt-v4's Integrator::Render, Mitsuba 3's
+/// Integrator::render); most only say what one camera sample sees (SamplingIntegrator::li) and run
+/// on the shared progressive loop.
 #include <string>
 
 #include "penumbra/core/color.h"
 #include "penumbra/core/ray.h"
+#include "penumbra/render/render_stats.h"
 #include "penumbra/render/sampler/sampler.h"
 #include "penumbra/render/world.h"
 
 namespace penumbra {
 
-/// A light-transport algorithm bound to a world. Implementations are immutable and thread-safe;
-/// all per-sample randomness comes from the sampler.
+class RenderJob;
+
+/// A light-transport algorithm bound to a world. `render` may keep state between its steps (a
+/// photon map, a radiosity solution); a SamplingIntegrator's `li` is const and thread-safe.
 class Integrator {
  public:
   virtual ~Integrator() = default;
   /// The registered name with its parameters.
   virtual std::string name() const = 0;
+  /// Renders the job's film, honouring its options (spp, time limit, target error, checkpoints,
+  /// cancellation).
+  virtual RenderStats render(RenderJob& job) = 0;
+};
+
+/// An integrator that estimates the radiance of each camera sample independently (pbrt-v4's
+/// ImageTileIntegrator / RayIntegrator, Mitsuba 3's SamplingIntegrator). Its render is the
+/// progressive pass loop of render_passes: `preprocess` runs once before the first pass (a
+/// photon map, a radiosity solve), `end_pass` after every pass (SPPM's photon pass).
+class SamplingIntegrator : public Integrator {
+ public:
+  RenderStats render(RenderJob& job) override;
+  /// Work before the first pass; may report progress and must return soon after
+  /// job.cancelled() turns true. The default does nothing.
+  virtual void preprocess(RenderJob& /*job*/) {}
+  /// Called after each finished pass with the number of samples per pixel done so far.
+  virtual void end_pass(RenderJob& /*job*/, int /*spp_done*/) {}
   /// Radiance arriving at the camera along `ray`.
   virtual Rgb li(const Ray& ray, Sampler& sampler, RayCounter& counter) const = 0;
 };

@@ -2,11 +2,10 @@
 
 #include <functional>
 
-#include <fmt/format.h>
-
-#include "penumbra/core/error.h"
 #include "penumbra/core/params.h"
+#include "penumbra/core/registry.h"
 #include "penumbra/render/integrator/distribution_integrator.h"
+#include "penumbra/render/integrator/path_integrator.h"
 #include "penumbra/render/integrator/raycast_integrator.h"
 #include "penumbra/render/integrator/whitted_integrator.h"
 
@@ -16,25 +15,27 @@ namespace {
 
 using Factory = std::function<std::unique_ptr<Integrator>(const World&, const ParamList&,
                                                           const RenderSettings&)>;
-struct Entry {
-  IntegratorInfo info;
-  Factory make;
-};
 
 /// Every integrator, written out explicitly: a new one is one line here.
-const std::vector<Entry>& entries() {
-  static const std::vector<Entry> all = {
-      {{"raycast", "first hit shaded by normal, albedo or eye light (debugging view)"},
+const Registry<Factory>& registry() {
+  static const Registry<Factory> all = {
+      {"raycast", "first hit shaded by normal, albedo or eye light (debugging view)",
        [](const World& w, const ParamList& p, const RenderSettings&) {
          return std::make_unique<RaycastIntegrator>(w, p);
        }},
-      {{"whitted", "recursive ray tracing: point lights, hard shadows, mirrors, refraction"},
+      {"whitted", "recursive ray tracing: point lights, hard shadows, mirrors, refraction",
        [](const World& w, const ParamList& p, const RenderSettings& s) {
-         return std::make_unique<WhittedIntegrator>(w, p, s.max_depth);
+         return std::make_unique<WhittedIntegrator>(
+             w, p, s.max_depth.value_or(RenderSettings::kDefaultMaxDepth));
        }},
-      {{"distribution", "distribution ray tracing: soft shadows, glossy, translucency (Cook 1984)"},
+      {"distribution", "distribution ray tracing: soft shadows, glossy, translucency (Cook 1984)",
        [](const World& w, const ParamList& p, const RenderSettings& s) {
-         return std::make_unique<DistributionIntegrator>(w, p, s.max_depth);
+         return std::make_unique<DistributionIntegrator>(
+             w, p, s.max_depth.value_or(RenderSettings::kDefaultMaxDepth));
+       }},
+      {"path", "path tracing: the rendering equation, unbiased, with MIS (Kajiya 1986, Veach 1997)",
+       [](const World& w, const ParamList& p, const RenderSettings& s) {
+         return std::make_unique<PathIntegrator>(w, p, s.max_depth.value_or(-1));
        }},
   };
   return all;
@@ -45,7 +46,7 @@ const std::vector<Entry>& entries() {
 const std::vector<IntegratorInfo>& integrator_list() {
   static const std::vector<IntegratorInfo> list = [] {
     std::vector<IntegratorInfo> l;
-    for (const auto& e : entries()) l.push_back(e.info);
+    for (const auto& e : registry().entries()) l.push_back({e.name, e.description});
     return l;
   }();
   return list;
@@ -54,11 +55,7 @@ const std::vector<IntegratorInfo>& integrator_list() {
 std::unique_ptr<Integrator> make_integrator(std::string_view spec, const World& world,
                                             const RenderSettings& settings) {
   const ParamList params = ParamList::parse(spec);
-  for (const auto& e : entries())
-    if (e.info.name == params.name()) return e.make(world, params, settings);
-  std::string names;
-  for (const auto& e : entries()) names += (names.empty() ? "" : ", ") + e.info.name;
-  throw Error(fmt::format("unknown integrator '{}' (valid: {})", params.name(), names));
+  return registry().get(params.name(), "integrator")(world, params, settings);
 }
 
 }  // namespace penumbra

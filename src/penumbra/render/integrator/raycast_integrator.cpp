@@ -23,7 +23,7 @@ std::string RaycastIntegrator::name() const {
 
 Rgb RaycastIntegrator::li(const Ray& ray, Sampler&, RayCounter& counter) const {
   SurfaceInteraction si;
-  if (!world_.intersect(ray, si, counter)) return world_.background();
+  if (!world_.intersect(ray, si, counter)) return world_.escaped(ray);
   MaterialScratch scratch;
   si.material = &si.material->at(si, scratch);  // textures evaluated at the hit
   switch (mode_) {

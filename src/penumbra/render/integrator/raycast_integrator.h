@@ -8,7 +8,7 @@ namespace penumbra {
 /// Shades the first hit by its shading normal (mode=normal: (n + 1) / 2), its albedo
 /// (mode=albedo; emitters show their radiance) or albedo times |cos| to the eye (mode=eyelight,
 /// the default, which shows shape). Misses show the background.
-class RaycastIntegrator final : public Integrator {
+class RaycastIntegrator final : public SamplingIntegrator {
  public:
   enum class Mode { kNormal, kAlbedo, kEyelight };
   RaycastIntegrator(const World& world, const ParamList& params);

@@ -10,11 +10,9 @@ namespace penumbra {
 WhittedIntegrator::WhittedIntegrator(const World& world, const ParamList& params, int max_depth)
     : world_(world), max_depth_(static_cast<int>(params.get_int("max_depth", max_depth, 0, 1000))) {
   params.check_all_used();
-  for (const auto& light : world.lights()) lights_.push_back(light.get());
-  for (const Emitter& e : world.emitters()) {
-    stand_ins_.push_back(std::make_unique<EmitterPointLight>(world, e));
-    lights_.push_back(stand_ins_.back().get());
-  }
+  for (const Light* light : world.lights())
+    if (light->is_delta()) lights_.push_back(light);
+  for (const Emitter& e : world.emitters()) stand_ins_.emplace_back(world, e);
 }
 
 Rgb WhittedIntegrator::li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
@@ -24,7 +22,7 @@ Rgb WhittedIntegrator::li(const Ray& ray, Sampler& sampler, RayCounter& counter)
 Rgb WhittedIntegrator::trace(const Ray& ray, int depth, Sampler& sampler,
                              RayCounter& counter) const {
   SurfaceInteraction si;
-  if (!world_.intersect(ray, si, counter)) return world_.background();
+  if (!world_.intersect(ray, si, counter)) return world_.escaped(ray);
   MaterialScratch scratch;
   si.material = &si.material->at(si, scratch);  // textures evaluated at the hit
   Rgb radiance = si.emitted;
@@ -33,14 +31,15 @@ Rgb WhittedIntegrator::trace(const Ray& ray, int depth, Sampler& sampler,
 
   // Direct light: one shadow ray per light.
   if (material.has_non_specular()) {
-    for (const Light* light : lights_) {
-      const LightSample ls = light->sample_li(si.p, sampler.get_2d());
-      if (ls.li.is_black() || !(ls.pdf > 0.0f)) continue;
+    const auto add = [&](const LightSample& ls) {
+      if (ls.li.is_black() || !(ls.pdf > 0.0f)) return;
       const Rgb f = material.eval(wo, si.to_local(ls.wi));
-      if (f.is_black()) continue;
-      if (world_.occluded(si.spawn_ray_to(si.p + ls.wi * ls.distance, ray.time), counter)) continue;
+      if (f.is_black()) return;
+      if (world_.occluded(si.shadow_ray(ls, ray.time), counter)) return;
       radiance += f * ls.li * (std::fabs(dot(ls.wi, si.ns)) / ls.pdf);
-    }
+    };
+    for (const Light* light : lights_) add(light->sample_li(si.p, sampler.get_2d()));
+    for (const EmitterPointLight& light : stand_ins_) add(light.sample_li(si.p, sampler.get_2d()));
   }
 
   // Specular recursion: mirror reflection, refraction.

@@ -14,12 +14,15 @@ namespace penumbra {
 /// (pi A L for a one-sided flat emitter). It sits at the area-weighted centroid of the planar
 /// primitives; a sphere's stand-in sits on the sphere's surface point facing the receiver (its
 /// centre would be hidden by the sphere itself). A closed emissive mesh shadows its own centroid:
-/// true area lights (distribution ray tracing) replace this approximation.
-class EmitterPointLight final : public Light {
+/// true area lights (distribution ray tracing) replace this approximation. Not a scene Light: only
+/// `whitted` uses it, beside the world's delta lights.
+class EmitterPointLight {
  public:
   EmitterPointLight(const World& world, const Emitter& emitter);
-  LightSample sample_li(Vec3 p, Vec2 u) const override;
-  Rgb power() const override;
+  /// The incident light at `p` (delta: pdf 1).
+  LightSample sample_li(Vec3 p, Vec2 u) const;
+  /// Total emitted power, the shape's.
+  Rgb power() const;
   /// Radiant intensity (W/sr) towards the unit direction w.
   Rgb intensity(Vec3 w) const;
 

@@ -1,8 +1,10 @@
 #include "penumbra/render/light/light_registry.h"
 
 #include <functional>
-#include <utility>
 
+#include "penumbra/core/registry.h"
+#include "penumbra/render/light/directional_light.h"
+#include "penumbra/render/light/environment_light.h"
 #include "penumbra/render/light/point_light.h"
 
 namespace penumbra {
@@ -12,27 +14,24 @@ namespace {
 using Factory = std::function<std::unique_ptr<Light>(const SceneParams&)>;
 
 /// Every light type, written out explicitly: a new one is one line here.
-const std::vector<std::pair<std::string, Factory>>& entries() {
-  static const std::vector<std::pair<std::string, Factory>> all = {
-      {"point", [](const SceneParams& p) { return std::make_unique<PointLight>(p); }},
+const Registry<Factory>& registry() {
+  static const Registry<Factory> all = {
+      {"point", "", [](const SceneParams& p) { return std::make_unique<PointLight>(p); }},
+      {"directional", "",
+       [](const SceneParams& p) { return std::make_unique<DirectionalLight>(p); }},
+      {"environment", "",
+       [](const SceneParams& p) { return std::make_unique<EnvironmentLight>(p); }},
   };
   return all;
 }
 
 }  // namespace
 
-std::vector<std::string> light_types() {
-  std::vector<std::string> names;
-  for (const auto& [name, make] : entries()) names.push_back(name);
-  return names;
-}
+std::vector<std::string> light_types() { return registry().names(); }
 
 std::unique_ptr<Light> make_light(const SceneParams& params) {
-  for (const auto& [name, make] : entries())
-    if (name == params.type()) return make(params);
-  std::string valid;
-  for (const auto& [name, make] : entries()) valid += (valid.empty() ? "" : ", ") + name;
-  params.fail("type", "unknown light type '" + params.type() + "' (valid: " + valid + ")");
+  if (const Factory* make = registry().find(params.type())) return (*make)(params);
+  params.fail("type", registry().unknown_name_message("light type", params.type()));
 }
 
 }  // namespace penumbra

@@ -76,7 +76,7 @@ ConductorMaterial::ConductorMaterial(const SceneParams& params)
   params.check_all_used();
 }
 
-Rgb ConductorMaterial::eval(Vec3 wo, Vec3 wi) const {
+Rgb ConductorMaterial::eval(Vec3 wo, Vec3 wi, TransportMode) const {
   if (smooth_ || !same_hemisphere(wo, wi)) return {};
   if (wo.z < 0.0f) wo.z = -wo.z, wi.z = -wi.z;  // the back side reflects alike
   const Vec3 sum = wo + wi;
@@ -101,13 +101,13 @@ float ConductorMaterial::pdf(Vec3 wo, Vec3 wi) const {
   return distribution_.d_visible(wo, h) / (4.0f * wo_h);
 }
 
-std::optional<BsdfSample> ConductorMaterial::sample(Vec3 wo, float, Vec2 u) const {
+std::optional<BsdfSample> ConductorMaterial::sample(Vec3 wo, float, Vec2 u, TransportMode) const {
   if (smooth_) {
     SpecularLobe lobe;
     specular_lobes(wo, &lobe);
     const float c = std::fabs(cos_theta(lobe.wi));
     if (!(c > 0.0f)) return std::nullopt;
-    return BsdfSample{lobe.wi, lobe.weight / c, 1.0f, true};
+    return BsdfSample{lobe.wi, lobe.weight / c, 1.0f, kBsdfSpecular | kBsdfReflection};
   }
   if (wo.z == 0.0f) return std::nullopt;
   const bool back = wo.z < 0.0f;
@@ -122,7 +122,7 @@ std::optional<BsdfSample> ConductorMaterial::sample(Vec3 wo, float, Vec2 u) cons
   const Rgb f = fresnel_.eval(wo_h) *
                 (distribution_.d(h) * distribution_.g2_reflection(wo, wi) / (4.0f * wo.z * wi.z));
   if (back) wi.z = -wi.z;
-  return BsdfSample{wi, f, pdf, false};
+  return BsdfSample{wi, f, pdf, kBsdfGlossy | kBsdfReflection};
 }
 
 int ConductorMaterial::specular_lobes(Vec3 wo, SpecularLobe out[2]) const {

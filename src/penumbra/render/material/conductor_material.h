@@ -39,12 +39,14 @@ class ConductorMaterial final : public Material {
  public:
   ConductorMaterial(ConductorFresnel fresnel, float roughness);
   explicit ConductorMaterial(const SceneParams& params);
-  Rgb eval(Vec3 wo, Vec3 wi) const override;
+  Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::kRadiance) const override;
   float pdf(Vec3 wo, Vec3 wi) const override;
-  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
+  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,
+                                   TransportMode mode = TransportMode::kRadiance) const override;
   int specular_lobes(Vec3 wo, SpecularLobe out[2]) const override;
-  bool has_non_specular() const override { return !smooth_; }
-  bool is_glossy() const override { return !smooth_; }
+  BsdfFlags flags() const override {
+    return (smooth_ ? kBsdfSpecular : kBsdfGlossy) | kBsdfReflection;
+  }
   /// The reflectance at normal incidence.
   Rgb albedo() const override { return fresnel_.eval(1.0f); }
   /// The microfacet distribution.

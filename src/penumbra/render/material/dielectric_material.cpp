@@ -49,16 +49,29 @@ int DielectricMaterial::specular_lobes(Vec3 wo, SpecularLobe out[2]) const {
   return n;
 }
 
-std::optional<BsdfSample> DielectricMaterial::sample(Vec3 wo, float uc, Vec2) const {
-  SpecularLobe lobes[2];
-  const int n = specular_lobes(wo, lobes);
+std::optional<BsdfSample> DielectricMaterial::sample(Vec3 wo, float uc, Vec2,
+                                                     TransportMode mode) const {
   const float f = fresnel_dielectric(wo.z, ior_);
+  Vec3 wt;
+  float eta_rel = 1.0f;
+  const bool can_refract = f < 1.0f && refract(wo, ior_, wt, eta_rel);
   // Choose reflection with probability F, refraction with 1 - F.
-  const int pick = (n == 2 && uc >= f) ? 1 : 0;
-  const float prob = n == 2 ? (pick == 0 ? f : 1.0f - f) : 1.0f;
-  const float c = std::fabs(lobes[pick].wi.z);
+  if (!can_refract || uc < f) {
+    const Vec3 wi{-wo.x, -wo.y, wo.z};
+    const float prob = can_refract ? f : 1.0f;
+    const float c = std::fabs(wi.z);
+    if (!(c > 0.0f) || !(prob > 0.0f)) return std::nullopt;
+    // f = lobe weight / |cos|, so f |cos| / pdf = weight / probability: unbiased for one lobe.
+    return BsdfSample{wi, Rgb(f) / c, prob, kBsdfSpecular | kBsdfReflection, 1.0f};
+  }
+  const float prob = 1.0f - f;
+  const float c = std::fabs(wt.z);
   if (!(c > 0.0f) || !(prob > 0.0f)) return std::nullopt;
-  return BsdfSample{lobes[pick].wi, lobes[pick].weight * (prob / c), prob, true};
+  // Radiance is compressed into the denser medium: it scales by 1/eta^2 crossing the interface;
+  // importance does not (Veach 1997, section 5.2).
+  const float scale = mode == TransportMode::kRadiance ? 1.0f / (eta_rel * eta_rel) : 1.0f;
+  return BsdfSample{wt, tint_ * ((1.0f - f) * scale / c), prob, kBsdfSpecular | kBsdfTransmission,
+                    eta_rel};
 }
 
 }  // namespace penumbra

@@ -20,11 +20,14 @@ class DielectricMaterial final : public Material {
  public:
   DielectricMaterial(float ior, Rgb tint) : ior_(ior), tint_(tint) {}
   explicit DielectricMaterial(const SceneParams& params);
-  Rgb eval(Vec3, Vec3) const override { return {}; }
+  Rgb eval(Vec3, Vec3, TransportMode = TransportMode::kRadiance) const override { return {}; }
   float pdf(Vec3, Vec3) const override { return 0.0f; }
-  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
+  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,
+                                   TransportMode mode = TransportMode::kRadiance) const override;
   int specular_lobes(Vec3 wo, SpecularLobe out[2]) const override;
-  bool has_non_specular() const override { return false; }
+  BsdfFlags flags() const override {
+    return kBsdfSpecular | kBsdfReflection | kBsdfTransmission;
+  }
   Rgb albedo() const override { return tint_; }
 
  private:

@@ -20,7 +20,7 @@ const Material& DiffuseMaterial::resolve(const SurfaceInteraction& si,
   return scratch.emplace<DiffuseMaterial>(albedo_texture_.eval(si));
 }
 
-Rgb DiffuseMaterial::eval(Vec3 wo, Vec3 wi) const {
+Rgb DiffuseMaterial::eval(Vec3 wo, Vec3 wi, TransportMode) const {
   if (!same_hemisphere(wo, wi)) return {};
   return albedo_ * std::numbers::inv_pi_v<float>;
 }
@@ -29,12 +29,12 @@ float DiffuseMaterial::pdf(Vec3 wo, Vec3 wi) const {
   return same_hemisphere(wo, wi) ? std::fabs(cos_theta(wi)) * std::numbers::inv_pi_v<float> : 0.0f;
 }
 
-std::optional<BsdfSample> DiffuseMaterial::sample(Vec3 wo, float, Vec2 u) const {
+std::optional<BsdfSample> DiffuseMaterial::sample(Vec3 wo, float, Vec2 u, TransportMode) const {
   Vec3 wi = sample_cosine_hemisphere(u);
   if (wo.z < 0.0f) wi.z = -wi.z;
   const float p = pdf(wo, wi);
   if (!(p > 0.0f)) return std::nullopt;
-  return BsdfSample{wi, eval(wo, wi), p, false};
+  return BsdfSample{wi, eval(wo, wi), p, kBsdfDiffuse | kBsdfReflection};
 }
 
 }  // namespace penumbra

@@ -12,11 +12,12 @@ class DiffuseMaterial final : public Material {
  public:
   explicit DiffuseMaterial(Rgb albedo) : albedo_(albedo) {}
   explicit DiffuseMaterial(const SceneParams& params);
-  Rgb eval(Vec3 wo, Vec3 wi) const override;
+  Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::kRadiance) const override;
   float pdf(Vec3 wo, Vec3 wi) const override;
-  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
+  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,
+                                   TransportMode mode = TransportMode::kRadiance) const override;
   int specular_lobes(Vec3, SpecularLobe[2]) const override { return 0; }
-  bool has_non_specular() const override { return true; }
+  BsdfFlags flags() const override { return kBsdfDiffuse | kBsdfReflection; }
   Rgb albedo() const override { return albedo_; }
 
  protected:

@@ -23,11 +23,11 @@ int MirrorMaterial::specular_lobes(Vec3 wo, SpecularLobe out[2]) const {
   return 1;
 }
 
-std::optional<BsdfSample> MirrorMaterial::sample(Vec3 wo, float, Vec2) const {
+std::optional<BsdfSample> MirrorMaterial::sample(Vec3 wo, float, Vec2, TransportMode) const {
   const Vec3 wi{-wo.x, -wo.y, wo.z};
   const float c = std::fabs(cos_theta(wi));
   if (!(c > 0.0f)) return std::nullopt;
-  return BsdfSample{wi, reflectance_ / c, 1.0f, true};
+  return BsdfSample{wi, reflectance_ / c, 1.0f, kBsdfSpecular | kBsdfReflection};
 }
 
 }  // namespace penumbra

@@ -12,11 +12,12 @@ class MirrorMaterial final : public Material {
  public:
   explicit MirrorMaterial(Rgb reflectance) : reflectance_(reflectance) {}
   explicit MirrorMaterial(const SceneParams& params);
-  Rgb eval(Vec3, Vec3) const override { return {}; }
+  Rgb eval(Vec3, Vec3, TransportMode = TransportMode::kRadiance) const override { return {}; }
   float pdf(Vec3, Vec3) const override { return 0.0f; }
-  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
+  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,
+                                   TransportMode mode = TransportMode::kRadiance) const override;
   int specular_lobes(Vec3 wo, SpecularLobe out[2]) const override;
-  bool has_non_specular() const override { return false; }
+  BsdfFlags flags() const override { return kBsdfSpecular | kBsdfReflection; }
   Rgb albedo() const override { return reflectance_; }
 
  protected:

@@ -59,17 +59,18 @@ std::optional<RoughDielectricMaterial::HalfVector> RoughDielectricMaterial::half
   return HalfVector{h, eta, is_reflection};
 }
 
-Rgb RoughDielectricMaterial::value(Vec3 wo, Vec3 wi, const HalfVector& hv, float fr) const {
+Rgb RoughDielectricMaterial::value(Vec3 wo, Vec3 wi, const HalfVector& hv, float fr,
+                                   TransportMode mode) const {
   const float d = distribution_.d(hv.h);
   const float cos_oi = std::fabs(cos_theta(wo) * cos_theta(wi));
   if (hv.reflect) return Rgb(d * distribution_.g2_reflection(wo, wi) * fr / (4.0f * cos_oi));
-  // Walter et al. 2007 transmission term with the radiance factor 1/eta^2:
+  // Walter et al. 2007 transmission term with the radiance factor 1/eta^2 (none for importance):
   // f = |i.h| |o.h| (1 - F) D G2 / (|cos i| |cos o| (i.h + o.h / eta)^2 eta^2).
   const float o_h = dot(wo, hv.h), i_h = dot(wi, hv.h);
   const float denom = i_h + o_h / hv.eta;
   const float t = (1.0f - fr) * d * distribution_.g2_transmission(wo, wi) * std::fabs(i_h * o_h) /
-                  (cos_oi * denom * denom * hv.eta * hv.eta);
-  return tint_ * t;
+                  (cos_oi * denom * denom);
+  return tint_ * (mode == TransportMode::kRadiance ? t / (hv.eta * hv.eta) : t);
 }
 
 float RoughDielectricMaterial::density(Vec3 wo, Vec3 wi, const HalfVector& hv, float fr,
@@ -82,11 +83,11 @@ float RoughDielectricMaterial::density(Vec3 wo, Vec3 wi, const HalfVector& hv, f
   return (1.0f - fr) * pdf_h * std::fabs(i_h) / (denom * denom);
 }
 
-Rgb RoughDielectricMaterial::eval(Vec3 wo, Vec3 wi) const {
+Rgb RoughDielectricMaterial::eval(Vec3 wo, Vec3 wi, TransportMode mode) const {
   if (smooth_) return {};
   const auto hv = half_vector(wo, wi);
   if (!hv) return {};
-  return value(wo, wi, *hv, fresnel_dielectric(dot(wo, hv->h), ior_));
+  return value(wo, wi, *hv, fresnel_dielectric(dot(wo, hv->h), ior_), mode);
 }
 
 float RoughDielectricMaterial::pdf(Vec3 wo, Vec3 wi) const {
@@ -97,8 +98,9 @@ float RoughDielectricMaterial::pdf(Vec3 wo, Vec3 wi) const {
   return density(wo, wi, *hv, fresnel_dielectric(dot(wo, hv->h), ior_), pdf_h);
 }
 
-std::optional<BsdfSample> RoughDielectricMaterial::sample(Vec3 wo, float uc, Vec2 u) const {
-  if (smooth_) return specular_.sample(wo, uc, u);
+std::optional<BsdfSample> RoughDielectricMaterial::sample(Vec3 wo, float uc, Vec2 u,
+                                                          TransportMode mode) const {
+  if (smooth_) return specular_.sample(wo, uc, u, mode);
   if (cos_theta(wo) == 0.0f) return std::nullopt;
   // A normal visible from wo's side (for wo inside: the microsurface seen from below).
   const Vec3 h = distribution_.sample_visible(upper(wo), u);
@@ -122,7 +124,9 @@ std::optional<BsdfSample> RoughDielectricMaterial::sample(Vec3 wo, float uc, Vec
   }
   const float p = density(wo, wi, hv, fr, pdf_h);
   if (!(p > 0.0f) || cos_theta(wi) == 0.0f) return std::nullopt;
-  return BsdfSample{wi, value(wo, wi, hv, fr), p, false};
+  return BsdfSample{wi, value(wo, wi, hv, fr, mode), p,
+                    kBsdfGlossy | (hv.reflect ? kBsdfReflection : kBsdfTransmission),
+                    hv.reflect ? 1.0f : hv.eta};
 }
 
 int RoughDielectricMaterial::specular_lobes(Vec3 wo, SpecularLobe out[2]) const {

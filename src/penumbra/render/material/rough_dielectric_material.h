@@ -14,7 +14,8 @@ namespace penumbra {
 /// Refraction through Rough Surfaces": GGX normals, height-correlated Smith masking (Heitz 2014),
 /// visible-normal sampling (Heitz 2018), reflection or refraction chosen by the Fresnel factor of
 /// the sampled microfacet. The front side (the normal's) is outside. Transmitted radiance scales
-/// by 1/eta^2 (eta = index on wi's side / index on wo's side), as in DielectricMaterial.
+/// by 1/eta^2 (eta = index on wi's side / index on wo's side), as in DielectricMaterial;
+/// importance does not.
 /// Parameters: ior (inside relative to outside, in (0, 100), default 1.5), roughness (in [0, 1],
 /// default 0.3; alpha = roughness^2), tint (RGB transmittance factor in [0, 1], default 1).
 /// alpha < 1e-3 or |ior - 1| < 1e-3 scatter as the smooth DielectricMaterial (delta lobes).
@@ -22,12 +23,14 @@ class RoughDielectricMaterial final : public Material {
  public:
   RoughDielectricMaterial(float ior, float roughness, Rgb tint);
   explicit RoughDielectricMaterial(const SceneParams& params);
-  Rgb eval(Vec3 wo, Vec3 wi) const override;
+  Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::kRadiance) const override;
   float pdf(Vec3 wo, Vec3 wi) const override;
-  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u) const override;
+  std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,
+                                   TransportMode mode = TransportMode::kRadiance) const override;
   int specular_lobes(Vec3 wo, SpecularLobe out[2]) const override;
-  bool has_non_specular() const override { return !smooth_; }
-  bool is_glossy() const override { return !smooth_; }
+  BsdfFlags flags() const override {
+    return (smooth_ ? kBsdfSpecular : kBsdfGlossy) | kBsdfReflection | kBsdfTransmission;
+  }
   Rgb albedo() const override { return tint_; }
   /// The microfacet distribution.
   const MicrofacetDistribution& distribution() const { return distribution_; }
@@ -45,7 +48,7 @@ class RoughDielectricMaterial final : public Material {
   /// grazing directions or when the microfacet would face away from either direction.
   std::optional<HalfVector> half_vector(Vec3 wo, Vec3 wi) const;
   /// The BSDF value for a pair with half vector hv and Fresnel factor fr.
-  Rgb value(Vec3 wo, Vec3 wi, const HalfVector& hv, float fr) const;
+  Rgb value(Vec3 wo, Vec3 wi, const HalfVector& hv, float fr, TransportMode mode) const;
   /// The density of choosing wi, given the visible-normal density pdf_h of hv.h.
   static float density(Vec3 wo, Vec3 wi, const HalfVector& hv, float fr, float pdf_h);
 

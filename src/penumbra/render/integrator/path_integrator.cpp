@@ -1,0 +1,147 @@
+#include "penumbra/render/integrator/path_integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "penumbra/core/error.h"
+#include "penumbra/render/material/material.h"
+#include "penumbra/render/sampling.h"
+
+namespace penumbra {
+
+namespace {
+
+PathIntegrator::Strategy parse_strategy(const std::string& s) {
+  if (s == "mis") return PathIntegrator::Strategy::kMis;
+  if (s == "nee") return PathIntegrator::Strategy::kNee;
+  if (s == "bsdf") return PathIntegrator::Strategy::kBsdf;
+  throw Error("path: unknown strategy '" + s + "' (valid: mis, nee, bsdf)");
+}
+
+const char* strategy_name(PathIntegrator::Strategy s) {
+  switch (s) {
+    case PathIntegrator::Strategy::kNee: return "nee";
+    case PathIntegrator::Strategy::kBsdf: return "bsdf";
+    case PathIntegrator::Strategy::kMis:
+    default: return "mis";
+  }
+}
+
+/// The lights a path samples by shadow rays: all of them, or only delta lights for `bsdf`.
+std::vector<const Light*> sampled_lights(const World& world, PathIntegrator::Strategy s) {
+  std::vector<const Light*> out;
+  for (const Light* l : world.lights())
+    if (s != PathIntegrator::Strategy::kBsdf || l->is_delta()) out.push_back(l);
+  return out;
+}
+
+}  // namespace
+
+PathIntegrator::PathIntegrator(const World& world, const ParamList& params, int max_depth)
+    : world_(world),
+      strategy_(parse_strategy(params.get_string("strategy", "mis"))),
+      max_depth_(static_cast<int>(params.get_int("max_depth", max_depth, -1, 1 << 30))),
+      rr_depth_(static_cast<int>(params.get_int("rr_depth", 3, 0, 1 << 30))),
+      light_sampler_(sampled_lights(world, strategy_), params.get_string("light_sampler", "power")) {
+  params.check_all_used();
+}
+
+std::string PathIntegrator::name() const {
+  std::string s = fmt::format("path:strategy={}", strategy_name(strategy_));
+  if (max_depth_ >= 0) s += fmt::format(",max_depth={}", max_depth_);
+  if (rr_depth_ != 3) s += fmt::format(",rr_depth={}", rr_depth_);
+  if (light_sampler_.strategy() != "power") s += ",light_sampler=" + light_sampler_.strategy();
+  return s;
+}
+
+float PathIntegrator::emission_weight(const Light& light, float bsdf_pdf, Vec3 from, Vec3 wi,
+                                      const LightPoint& hit) const {
+  if (strategy_ == Strategy::kBsdf) return 1.0f;
+  if (strategy_ == Strategy::kNee) return 0.0f;
+  const float light_pdf = light_sampler_.pmf(&light) * light.pdf_li(from, wi, hit);
+  return power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
+}
+
+Rgb PathIntegrator::sample_light(const SurfaceInteraction& si, const Material& m, Vec3 wo,
+                                 float time, Sampler& sampler, RayCounter& counter) const {
+  // The sample values are drawn whether or not they are used, so that every vertex takes the
+  // same dimensions.
+  const float u_light = sampler.get_1d();
+  const Vec2 u = sampler.get_2d();
+  const SampledLight picked = light_sampler_.sample(u_light);
+  if (!picked.light || !(picked.pmf > 0.0f)) return {};
+  const LightSample ls = picked.light->sample_li(si.p, u);
+  if (ls.li.is_black() || !(ls.pdf > 0.0f)) return {};
+  const Vec3 wi = si.to_local(ls.wi);
+  const Rgb f = m.eval(wo, wi) * std::fabs(dot(ls.wi, si.ns));
+  if (f.is_black()) return {};
+  if (world_.occluded(si.shadow_ray(ls, time), counter)) return {};
+  const float light_pdf = picked.pmf * ls.pdf;
+  if (ls.delta || strategy_ != Strategy::kMis) return f * ls.li / light_pdf;
+  return f * ls.li * (power_heuristic(1.0f, light_pdf, 1.0f, m.pdf(wo, wi)) / light_pdf);
+}
+
+Rgb PathIntegrator::li(const Ray& camera_ray, Sampler& sampler, RayCounter& counter) const {
+  Rgb radiance, beta(1.0f);
+  Ray ray = camera_ray;
+  bool specular = true;   // the last bounce was specular (or there was none): emission counts fully
+  float bsdf_pdf = 0.0f;  // density of the last BSDF-sampled direction
+  Vec3 from;              // the vertex it left
+  float eta_scale = 1.0f;
+  for (int depth = 0;; ++depth) {
+    SurfaceInteraction si;
+    if (!world_.intersect(ray, si, counter)) {
+      // Left the scene: the environment's radiance, weighted against light sampling.
+      for (const Light* light : world_.infinite_lights()) {
+        const Rgb le = light->le(ray);
+        if (le.is_black()) continue;
+        const float w = specular ? 1.0f : emission_weight(*light, bsdf_pdf, from, ray.d, {});
+        radiance += beta * le * w;
+      }
+      break;
+    }
+    // Emission of an area light the path hit.
+    if (!si.emitted.is_black()) {
+      const float w = specular ? 1.0f
+                               : emission_weight(*si.area_light, bsdf_pdf, from, ray.d,
+                                                 si.light_point());
+      radiance += beta * si.emitted * w;
+    }
+    if (max_depth_ >= 0 && depth >= max_depth_) break;
+
+    MaterialScratch scratch;
+    const Material& m = si.material->at(si, scratch);  // textures evaluated at the hit
+    const Vec3 wo = si.to_local(si.wo);
+    // Next-event estimation at non-specular vertices.
+    if (m.has_non_specular() && !light_sampler_.lights().empty())
+      radiance += beta * sample_light(si, m, wo, ray.time, sampler, counter);
+
+    // The continuation, sampled from the BSDF.
+    const float uc = sampler.get_1d();
+    const Vec2 u = sampler.get_2d();
+    const auto bs = m.sample(wo, uc, u, TransportMode::kRadiance);
+    if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) break;
+    const Vec3 wi = si.to_world(bs->wi);
+    beta *= bs->f * (std::fabs(dot(wi, si.ns)) / bs->pdf);
+    if (!(beta.max_channel() > 0.0f) || !std::isfinite(beta.max_channel())) break;
+    specular = bs->is_specular();
+    bsdf_pdf = bs->pdf;
+    from = si.p;
+    if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
+    ray = si.spawn_ray(wi, ray.time);
+
+    // Russian roulette on the throughput, undoing refraction's radiance scaling (pbrt-v4).
+    const float rr = beta.max_channel() * eta_scale;
+    const float u_rr = sampler.get_1d();
+    if (depth + 1 >= rr_depth_ && rr < 1.0f) {
+      const float q = std::max(0.05f, 1.0f - rr);
+      if (u_rr < q) break;
+      beta = beta / (1.0f - q);
+    }
+  }
+  return radiance;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,55 @@
+#pragma once
+/// `path`: unidirectional path tracing, the unbiased solution of the rendering equation (Kajiya
+/// 1986, "The Rendering Equation"; next-event estimation and multiple importance sampling after
+/// Veach 1997, "Robust Monte Carlo Methods for Light Transport Simulation", chapter 9).
+#include <string>
+
+#include "penumbra/core/params.h"
+#include "penumbra/render/integrator/integrator.h"
+#include "penumbra/render/light/light_sampler.h"
+
+namespace penumbra {
+
+/// Follows one path per camera sample: at each hit the BSDF picks the next direction, the
+/// throughput keeps the absorption so far, and the path ends when it leaves the scene, at
+/// max_depth bounces, or by Russian roulette (from rr_depth bounces on, with the survival
+/// probability set by the throughput; compensated for the eta^2 of refraction so radiance
+/// compressed into glass does not end paths early).
+///
+/// Strategies for the light a path reaches:
+/// - `mis` (default): at every non-specular vertex one light sample with a shadow ray
+///   (next-event estimation), and emission found by the BSDF-sampled continuation; the two
+///   weighted by the power heuristic (Veach, Guibas 1995).
+/// - `nee`: light sampling only; emission that a BSDF-sampled ray finds counts only when seen
+///   directly or through specular bounces.
+/// - `bsdf`: the lecture's naive path tracer, which finds extended lights only by hitting them
+///   (point and directional lights, which no ray can hit, are still sampled by shadow rays).
+/// All three converge to the same image. Specular chains (mirrors, smooth glass) are followed
+/// exactly: no light sampling there, and emission seen through them counts fully.
+///
+/// Parameters: strategy (mis, nee, bsdf), max_depth (bounces; default unbounded: -1, or the
+/// scene's / --max-depth when given), rr_depth (default 3), light_sampler (power, uniform).
+class PathIntegrator final : public SamplingIntegrator {
+ public:
+  enum class Strategy { kMis, kNee, kBsdf };
+  PathIntegrator(const World& world, const ParamList& params, int max_depth);
+  std::string name() const override;
+  Rgb li(const Ray& ray, Sampler& sampler, RayCounter& counter) const override;
+
+ private:
+  /// One light sample's contribution at a non-specular vertex (without the path throughput).
+  Rgb sample_light(const SurfaceInteraction& si, const Material& m, Vec3 wo, float time,
+                   Sampler& sampler, RayCounter& counter) const;
+  /// The MIS weight of emission `light` reached by a BSDF sample of density bsdf_pdf from
+  /// `from` in direction wi (hit: the point on an area light).
+  float emission_weight(const Light& light, float bsdf_pdf, Vec3 from, Vec3 wi,
+                        const LightPoint& hit) const;
+
+  const World& world_;
+  Strategy strategy_;
+  int max_depth_;  ///< -1: unbounded
+  int rr_depth_;
+  LightSampler light_sampler_;
+};
+
+}  // namespace penumbra

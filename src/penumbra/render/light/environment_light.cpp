@@ -1,0 +1,200 @@
+#include "penumbra/render/light/environment_light.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <utility>
+
+#include "penumbra/core/error.h"
+#include "penumbra/image/image_io.h"
+#include "penumbra/render/sampling.h"
+#include "penumbra/scene/json_value.h"
+#include "penumbra/scene/transform_parser.h"
+
+namespace penumbra {
+
+namespace {
+
+constexpr float kPi = std::numbers::pi_v<float>;
+constexpr double kPiD = std::numbers::pi;
+
+// The map named by "map" (empty when absent), checked: an existing .exr or .pfm file with finite
+// pixels.
+RgbImage read_map(const SceneParams& params) {
+  const bool present = params.has("map");
+  const std::string path = params.get_string("map", "");
+  if (!present) return {};
+  if (path.empty()) params.fail("map", "must not be empty");
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".exr" && ext != ".pfm")
+    params.fail("map", "an environment map must be an .exr or .pfm image, got \"" + path + "\"");
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) params.fail("map", "environment map not found: " + path);
+  if (!std::filesystem::is_regular_file(path, ec))
+    params.fail("map", "not a regular file: " + path);
+  RgbImage map;
+  try {
+    map = read_image(path);
+  } catch (const Error& e) {
+    params.fail("map", std::string("cannot read the environment map: ") + e.what());
+  }
+  if (map.empty()) params.fail("map", "environment map has no pixels: " + path);
+  for (int y = 0; y < map.height(); ++y)
+    for (int x = 0; x < map.width(); ++x) {
+      const Rgb c = map.at(x, y);
+      if (!std::isfinite(c.r) || !std::isfinite(c.g) || !std::isfinite(c.b))
+        params.fail("map", path + ": pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                               ") is not finite");
+    }
+  return map;
+}
+
+// The optional "transform", which must be a rotation (or a mirroring).
+Transform read_rotation(const SceneParams& params) {
+  const nlohmann::json* ops = params.get_json("transform");
+  if (!ops) return {};
+  const JsonPlace place = JsonPlace{params.file(), params.path()}.key("transform");
+  const Transform t = parse_transform(*ops, place);
+  const auto& m = t.matrix().m;
+  if (m[0][3] != 0.0 || m[1][3] != 0.0 || m[2][3] != 0.0)
+    place.fail(
+        "an environment's transform must be a rotation; a translation has no meaning for "
+        "light from infinitely far away");
+  const double len = std::sqrt(m[0][0] * m[0][0] + m[1][0] * m[1][0] + m[2][0] * m[2][0]);
+  if (!is_similarity(t) || std::fabs(len - 1.0) > 1e-5)
+    place.fail("an environment's transform must be a rotation; it scales or shears");
+  return t;
+}
+
+}  // namespace
+
+EnvironmentLight::EnvironmentLight(RgbImage map, Rgb scale, const Transform& to_world)
+    : map_(std::move(map)), scale_(scale), to_world_(to_world), to_map_(to_world.inverted()) {
+  build();
+}
+
+EnvironmentLight::EnvironmentLight(const SceneParams& params) {
+  scale_ = params.get_rgb("radiance", Rgb(1.0f));
+  for (int c = 0; c < 3; ++c)
+    if (!(scale_[c] >= 0.0f && std::isfinite(scale_[c])))
+      params.fail("radiance", "must be finite and non-negative");
+  map_ = read_map(params);
+  to_world_ = read_rotation(params);
+  to_map_ = to_world_.inverted();
+  params.check_all_used();
+  build();
+}
+
+void EnvironmentLight::build() {
+  if (map_.empty()) map_ = RgbImage(1, 1, Rgb(1.0f));
+  const int w = map_.width(), h = map_.height();
+  // Row boundaries in cos(theta), from the zenith (+1) down to the nadir (-1).
+  row_z_.resize(h + 1);
+  for (int j = 0; j <= h; ++j) row_z_[j] = std::cos(kPiD * j / h);
+  row_z_[0] = 1.0, row_z_[h] = -1.0;
+
+  // Sampling weights: luminance times (a multiple of) the pixel's solid angle; the integral of Le.
+  std::vector<float> weights(static_cast<size_t>(w) * h);
+  row_factor_.resize(h);
+  double sum[3] = {0, 0, 0};
+  for (int j = 0; j < h; ++j) {
+    const double dz = row_z_[j] - row_z_[j + 1];
+    const double solid_angle = 2.0 * kPiD / w * dz;
+    row_factor_[j] = static_cast<float>(1.0 / (2.0 * kPiD * h * dz));
+    for (int i = 0; i < w; ++i) {
+      Rgb& c = map_.at(i, j);
+      for (int k = 0; k < 3; ++k) c[k] = std::fmax(c[k], 0.0f);  // no negative radiance
+      const Rgb le = scale_ * c;
+      weights[static_cast<size_t>(j) * w + i] = static_cast<float>(le.luminance() * dz);
+      for (int k = 0; k < 3; ++k) sum[k] += le[k] * solid_angle;
+    }
+  }
+  integral_ = Rgb(float(sum[0]), float(sum[1]), float(sum[2]));
+  distribution_ = Distribution2D(weights, w, h);
+}
+
+void EnvironmentLight::preprocess(const Bounds3& b) {
+  bounding_sphere(b, center_, radius_);
+  radius_ = std::fmax(radius_, 1e-3f);  // an empty scene still gets a finite disc
+}
+
+EnvironmentLight::Pixel EnvironmentLight::pixel_of(Vec3 w) const {
+  const int width = map_.width(), height = map_.height();
+  const float theta = std::acos(std::clamp(w.y, -1.0f, 1.0f));
+  const float u = 0.5f + std::atan2(w.x, -w.z) * (0.5f / kPi);
+  Pixel px;
+  px.x = std::clamp(static_cast<int>(u * width), 0, width - 1);
+  px.y = std::clamp(static_cast<int>(theta * (height / kPi)), 0, height - 1);
+  return px;
+}
+
+Vec3 EnvironmentLight::direction_of(const Sample2D& s) const {
+  // Uniform in cos(theta) within the row (so uniform in solid angle within the pixel).
+  const float t = std::clamp(s.p.y * map_.height() - s.y, 0.0f, 1.0f);
+  const double z = row_z_[s.y] + t * (row_z_[s.y + 1] - row_z_[s.y]);
+  const double sin_theta = std::sqrt(std::fmax(0.0, (1.0 - z) * (1.0 + z)));
+  const double phi = 2.0 * kPiD * (s.p.x - 0.5);
+  const Vec3 local(float(sin_theta * std::sin(phi)), float(z), float(-sin_theta * std::cos(phi)));
+  return normalize(to_world_.vector(local));
+}
+
+float EnvironmentLight::pdf_of(Pixel px) const {
+  return distribution_.cell_pdf(px.x, px.y) * row_factor_[px.y];
+}
+
+Vec3 EnvironmentLight::to_map(Vec3 d) const {
+  return normalize(to_map_.vector(d));
+}
+
+LightSample EnvironmentLight::sample_li(Vec3, Vec2 u) const {
+  LightSample ls;
+  ls.wi = direction_of(distribution_.sample(u));
+  ls.distance = kInfinity;
+  // Radiance and density from the direction itself, exactly as le and pdf_li compute them.
+  const Pixel px = pixel_of(to_map(ls.wi));
+  ls.pdf = pdf_of(px);
+  if (ls.pdf > 0.0f) ls.li = scale_ * map_.at(px.x, px.y);
+  return ls;
+}
+
+float EnvironmentLight::pdf_li(Vec3, Vec3 wi, const LightPoint&) const {
+  return pdf_of(pixel_of(to_map(wi)));
+}
+
+Rgb EnvironmentLight::le(const Ray& ray) const {
+  const Pixel px = pixel_of(to_map(ray.d));
+  return scale_ * map_.at(px.x, px.y);
+}
+
+LightLeSample EnvironmentLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) const {
+  LightLeSample s;
+  const Vec3 w = direction_of(distribution_.sample(u_dir));  // the direction light arrives from
+  const Pixel px = pixel_of(to_map(w));
+  s.pdf_dir = pdf_of(px);
+  if (!(s.pdf_dir > 0.0f)) return s;
+  // Origin on the disc of the bounding sphere that faces w, one radius out.
+  const Vec2 d = sample_concentric_disk(u_pos);
+  Vec3 t, b;
+  orthonormal_basis(w, t, b);
+  s.ray.o = center_ + (w + t * d.x + b * d.y) * radius_;
+  s.ray.d = -w;
+  s.ray.time = time;
+  s.l = scale_ * map_.at(px.x, px.y);
+  s.pdf_pos = 1.0f / (kPi * radius_ * radius_);
+  return s;
+}
+
+void EnvironmentLight::pdf_le(const Ray& ray, Vec3, float& pdf_pos, float& pdf_dir) const {
+  pdf_pos = 1.0f / (kPi * radius_ * radius_);
+  pdf_dir = pdf_li({}, -ray.d, {});
+}
+
+Rgb EnvironmentLight::power() const {
+  // Radiance from every direction crossing the bounding sphere's disc: pi r^2 * integral of Le.
+  return integral_ * (kPi * radius_ * radius_);
+}
+
+}  // namespace penumbra

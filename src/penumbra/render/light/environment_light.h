@@ -1,0 +1,97 @@
+#pragma once
+/// An environment map: radiance from every direction, read from an equirectangular HDR image
+/// and importance-sampled by luminance (pbrt-v4's ImageInfiniteLight, on a latitude-longitude map).
+#include <vector>
+
+#include "penumbra/core/transform.h"
+#include "penumbra/image/image.h"
+#include "penumbra/render/light/light.h"
+#include "penumbra/render/sampling/distribution_2d.h"
+#include "penumbra/scene/scene_params.h"
+
+namespace penumbra {
+
+/// Light of type "environment": Le(w) = radiance * map(w), arriving from every direction.
+///
+/// Parameters:
+/// - radiance: RGB scale (a number s means (s, s, s)), default 1, finite and non-negative.
+/// - map: optional path of an equirectangular .exr or .pfm image (relative paths are resolved
+///   against the scene file's folder by the scene loader). Without it the map is constant 1 and
+///   the light equals UniformInfiniteLight. Negative pixel values are read as 0; NaN or infinite
+///   pixels are an error.
+/// - transform: optional map-to-world rotation, in the syntax of shapes' "transform" (for example
+///   [{"rotate": {"axis": [0, 1, 0], "angle": 90}}]); only rotations (and mirrorings) are
+///   accepted: no scale, shear or translation.
+///
+/// Map orientation, in the map's frame (the world frame when there is no transform): +y is up.
+/// Row 0 (the image's top) is the zenith +y, the bottom row the nadir -y; the image's centre
+/// column looks along -z, the column at u = 0.75 along +x and the left/right edges along +z, so
+/// seen from inside the sphere the image is not mirrored. For a unit direction w = (x, y, z):
+///   u = 0.5 + atan2(x, -z) / (2 pi),   v = acos(y) / pi,   pixel (floor(u W), floor(v H));
+///   w(u, v) = (sin(theta) sin(phi), cos(theta), -sin(theta) cos(phi)), theta = pi v,
+///   phi = 2 pi (u - 0.5).
+/// A map point (u, v) shows the world direction transform(w(u, v)).
+///
+/// Lookup is nearest-pixel (no filtering), so the radiance is constant on each pixel's patch of
+/// the sphere, and so is the sampling density: a pixel is chosen with probability proportional to
+/// luminance(radiance * pixel) times the pixel's solid angle (2 pi / W) (cos theta_j -
+/// cos theta_j+1), by a Distribution2D (marginal over rows, conditional per row), and the
+/// direction is uniform in solid angle within the pixel (uniform in phi and cos theta). The
+/// density is therefore pdf = P(pixel) / solid_angle(pixel), exactly proportional to the
+/// luminance of Le; a constant map gives 1 / (4 pi) everywhere, and nothing diverges at the poles.
+/// (Luminance is positive whenever a non-negative colour is not black, so every direction with
+/// Le > 0 has a positive density.)
+///
+/// Emitted rays (sample_le) take a direction from the map and an origin on the disc of the
+/// scene's bounding-sphere radius r facing it, pdf_pos = 1 / (pi r^2); power() = pi r^2 times
+/// the integral of Le over the sphere.
+class EnvironmentLight final : public Light {
+ public:
+  /// A light of radiance `scale` * `map` (an empty map is constant 1) with the map-to-world
+  /// rotation `to_world` (must be orthogonal; not checked here).
+  EnvironmentLight(RgbImage map, Rgb scale, const Transform& to_world = {});
+  /// From scene parameters; throws InputError naming the file, JSON path and problem.
+  explicit EnvironmentLight(const SceneParams& params);
+
+  LightKind kind() const override { return LightKind::kInfinite; }
+  void preprocess(const Bounds3& scene_bounds) override;
+  LightSample sample_li(Vec3 p, Vec2 u) const override;
+  float pdf_li(Vec3 p, Vec3 wi, const LightPoint& hit) const override;
+  Rgb le(const Ray& ray) const override;
+  LightLeSample sample_le(Vec2 u_pos, Vec2 u_dir, float time) const override;
+  void pdf_le(const Ray& ray, Vec3 n, float& pdf_pos, float& pdf_dir) const override;
+  Rgb power() const override;
+
+  /// The map (1 x 1 of value 1 for a constant environment), without the radiance scale.
+  const RgbImage& map() const { return map_; }
+  /// Integral of Le over the sphere of directions (W sr^-1 m^-2 integrated over solid angle).
+  Rgb integral() const { return integral_; }
+
+ private:
+  /// A pixel of the map.
+  struct Pixel {
+    int x = 0, y = 0;
+  };
+  void build();
+  /// The pixel seen along the unit map-frame direction w.
+  Pixel pixel_of(Vec3 w) const;
+  /// A direction in the world frame (unit) and map frame from a map sample.
+  Vec3 direction_of(const Sample2D& s) const;
+  /// Solid-angle density of sampling the map-frame direction's pixel.
+  float pdf_of(Pixel px) const;
+  /// The unit map-frame direction of the world direction d.
+  Vec3 to_map(Vec3 d) const;
+
+  RgbImage map_;
+  Rgb scale_;
+  Transform to_world_, to_map_;
+  Distribution2D distribution_;
+  std::vector<double> row_z_;      ///< cos(theta) at the H + 1 row boundaries, from +1 to -1
+  std::vector<float> row_factor_;  ///< per row: 1 / (2 pi H (z_j - z_j+1)), to turn a density on
+                                   ///< [0, 1)^2 into one per solid angle
+  Rgb integral_;
+  Vec3 center_;
+  float radius_ = 1;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,115 @@
+// `penumbra render` as a user runs it: the progressive loop's flags, signals and outputs.
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "cli_fixture.h"
+#include "penumbra/image/image_io.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RenderCli : public CliFixture {};
+
+/// No 8 x 8 tile of the image at `p` is black (the render's tiles are 16 x 16; the Cornell box's
+/// camera sees past the box along the image's bottom row, so single black pixels are expected).
+void expect_no_black_tiles(const std::string& p) {
+  const RgbImage img = read_image(p);
+  ASSERT_GT(img.width(), 0);
+  for (int ty = 0; ty < img.height(); ty += 8)
+    for (int tx = 0; tx < img.width(); tx += 8) {
+      float brightest = 0.0f;
+      for (int y = ty; y < std::min(ty + 8, img.height()); ++y)
+        for (int x = tx; x < std::min(tx + 8, img.width()); ++x)
+          brightest = std::max(brightest, img.at(x, y).max_channel());
+      EXPECT_GT(brightest, 0.0f) << p << ": tile at " << tx << "," << ty;
+    }
+}
+
+TEST_F(RenderCli, PathTracesTheCornellBoxAndReportsItsRates) {
+  ASSERT_EQ(run("render " + scene("cornell-box.json") + " --resolution 32x32 --spp 8 -o " +
+                path("out.exr")),
+            0)
+      << err_;
+  expect_no_black_tiles(path("out.exr"));
+  for (const char* what : {"path:strategy=mis", "Msamples/s", "Mrays/s", "traversal", "8 spp"})
+    EXPECT_NE(err_.find(what), std::string::npos) << what << "\n" << err_;
+}
+
+TEST_F(RenderCli, TimeLimitStopsAndReportsTheSppReached) {
+  ASSERT_EQ(run("render " + scene("cornell-box.json") +
+                " --resolution 32x32 --spp 1000000 --time-limit 1 -o " + path("out.pfm")),
+            0)
+      << err_;
+  EXPECT_NE(err_.find("time limit"), std::string::npos) << err_;
+  expect_no_black_tiles(path("out.pfm"));
+}
+
+TEST_F(RenderCli, VarianceAndTargetErrorAreWritten) {
+  ASSERT_EQ(run("render " + scene("cornell-box.json") +
+                " --resolution 24x24 --spp 100000 --target-error 0.2 --variance " +
+                path("var.exr") + " -o " + path("out.exr")),
+            0)
+      << err_;
+  EXPECT_NE(err_.find("error target"), std::string::npos) << err_;
+  EXPECT_NE(err_.find("mean relative error"), std::string::npos) << err_;
+  const RgbImage var = read_image(path("var.exr"));
+  EXPECT_EQ(var.width(), 24);
+  EXPECT_GT(var.at(12, 12).g, 0.0f);
+  // A PNG cannot hold a variance: refused before any work.
+  EXPECT_NE(run("render " + scene("cornell-box.json") + " --variance " + path("v.png") + " -o " +
+                path("o.exr")),
+            0);
+  EXPECT_NE(err_.find("--variance"), std::string::npos) << err_;
+  EXPECT_FALSE(fs::exists(path("o.exr")));
+}
+
+TEST_F(RenderCli, CheckpointsWriteTheImageWhileRendering) {
+  ASSERT_EQ(run("render " + scene("cornell-box.json") +
+                " --resolution 32x32 --spp 1000000 --time-limit 2.5 --checkpoint 0.5 -o " +
+                path("out.png")),
+            0)
+      << err_;
+  EXPECT_NE(err_.find("checkpoint:"), std::string::npos) << err_;
+  EXPECT_TRUE(fs::exists(path("out.png")));
+}
+
+// SIGINT and SIGTERM stop a long render within about a second; the image of every finished
+// sample is written (no black tiles) and the exit status is 130.
+TEST_F(RenderCli, InterruptWritesTheFinishedSamplesAndExits130) {
+  for (const int sig : {SIGINT, SIGTERM}) {
+    const std::string out = path("interrupted-" + std::to_string(sig) + ".pfm");
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const std::string cli = PENUMBRA_CLI;
+      freopen("/dev/null", "w", stderr);
+      execl(cli.c_str(), cli.c_str(), "render", scene("cornell-box.json").c_str(), "--resolution",
+            "48x48", "--spp", "1000000", "-o", out.c_str(), static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1500));
+    const auto sent = std::chrono::steady_clock::now();
+    kill(pid, sig);
+    int status = 0;
+    ASSERT_EQ(waitpid(pid, &status, 0), pid);
+    const double waited =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - sent).count();
+    EXPECT_LT(waited, 2.0);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 130);
+    ASSERT_TRUE(fs::exists(out));
+    expect_no_black_tiles(out);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -1,0 +1,392 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "../image/temp_dir.h"
+#include "penumbra/core/error.h"
+#include "penumbra/core/rng.h"
+#include "penumbra/image/pfm.h"
+#include "penumbra/render/light/environment_light.h"
+#include "penumbra/render/light/light_registry.h"
+#include "penumbra/render/light/uniform_infinite_light.h"
+#include "penumbra/render/world.h"
+#include "penumbra/scene/scene_loader.h"
+
+namespace penumbra {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+// The documented map convention, written out independently of the light (in double): the
+// map-frame direction of map point (u, v), and the pixel that a map-frame direction falls in.
+Vec3 map_direction(double u, double v) {
+  const double theta = kPi * v, phi = 2 * kPi * (u - 0.5);
+  return {float(std::sin(theta) * std::sin(phi)), float(std::cos(theta)),
+          float(-std::sin(theta) * std::cos(phi))};
+}
+void map_pixel(Vec3 w, int width, int height, int& x, int& y) {
+  const double u = 0.5 + std::atan2(double(w.x), -double(w.z)) / (2 * kPi);
+  const double v = std::acos(std::clamp(double(w.y), -1.0, 1.0)) / kPi;
+  x = std::min(int(u * width), width - 1), y = std::min(int(v * height), height - 1);
+}
+// Rodrigues' rotation of v by `degrees` about `axis` (right-handed).
+Vec3 rotate_about(Vec3 v, Vec3 axis, double degrees) {
+  const Vec3 k = normalize(axis);
+  const double a = degrees * kPi / 180, c = std::cos(a), s = std::sin(a), kv = dot(k, v);
+  const Vec3 kxv = cross(k, v);
+  return {float(v.x * c + kxv.x * s + k.x * kv * (1 - c)),
+          float(v.y * c + kxv.y * s + k.y * kv * (1 - c)),
+          float(v.z * c + kxv.z * s + k.z * kv * (1 - c))};
+}
+// Solid angle of a pixel of row y.
+double pixel_solid_angle(int y, int width, int height) {
+  return 2 * kPi / width * (std::cos(kPi * y / height) - std::cos(kPi * (y + 1) / height));
+}
+
+// A sky: a coloured gradient over a ground with black pixels, a pure blue pixel (luminance far
+// below its largest channel) and a 2 x 2 sun of radiance `sun` at columns 40-41 of 64, rows 9-10.
+RgbImage sky_map(int w, int h, float sun) {
+  RgbImage map(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const float t = (y + 0.5f) / h;
+      map.at(x, y) = t < 0.5f ? Rgb(0.3f + t, 0.5f + 0.5f * t, 1.0f) * (1.0f + 0.3f * (x % 5))
+                              : Rgb(0.2f, 0.15f, 0.1f) * float((x * 3 + y) % 4);  // some black
+    }
+  map.at(w / 8, h / 4) = Rgb(0, 0, 2);
+  for (int y = 9 * h / 32; y < 11 * h / 32; ++y)
+    for (int x = 40 * w / 64; x < 42 * w / 64; ++x) map.at(x, y) = Rgb(1.0f, 0.9f, 0.7f) * sun;
+  return map;
+}
+
+// Monte Carlo irradiance at a point of normal n (sum of Le cos / pdf over sample_li, no
+// occlusion) against the map's integral of L max(0, cos) over the sphere, by 16 x 16 midpoint
+// quadrature in (phi, cos theta) over every pixel; the map is rotated by (axis, degrees).
+void expect_irradiance(const RgbImage& map, Rgb scale, Vec3 axis, double degrees, Vec3 n) {
+  const EnvironmentLight light(map, scale, rotate(float(degrees), axis));
+  const Vec3 n_map = rotate_about(n, axis, -degrees);
+  const int w = map.width(), h = map.height(), kSub = 16;
+  double ref[3] = {0, 0, 0};
+  for (int y = 0; y < h; ++y) {
+    const double z0 = std::cos(kPi * y / h), z1 = std::cos(kPi * (y + 1) / h);
+    for (int x = 0; x < w; ++x) {
+      double cos_sum = 0;
+      for (int a = 0; a < kSub; ++a)
+        for (int b = 0; b < kSub; ++b) {
+          const double z = z0 + (a + 0.5) / kSub * (z1 - z0);
+          const double phi = 2 * kPi * ((x + (b + 0.5) / kSub) / w - 0.5);
+          const double s = std::sqrt(1 - z * z);
+          const double c = n_map.x * s * std::sin(phi) + n_map.y * z - n_map.z * s * std::cos(phi);
+          cos_sum += std::max(0.0, c);
+        }
+      const double weight = cos_sum / (kSub * kSub) * pixel_solid_angle(y, w, h);
+      for (int k = 0; k < 3; ++k) ref[k] += scale[k] * map.at(x, y)[k] * weight;
+    }
+  }
+  constexpr int kSamples = 200000;
+  Pcg32 rng(42);
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  for (int i = 0; i < kSamples; ++i) {
+    const LightSample ls =
+        light.sample_li({0.3f, 0.1f, -0.2f}, {rng.next_float(), rng.next_float()});
+    ASSERT_GT(ls.pdf, 0.0f);
+    const double c = std::max(0.0f, dot(n, ls.wi));
+    for (int k = 0; k < 3; ++k) {
+      const double f = ls.li[k] * c / ls.pdf;
+      sum[k] += f, sum2[k] += f * f;
+    }
+  }
+  for (int k = 0; k < 3; ++k) {
+    const double mean = sum[k] / kSamples;
+    const double sigma = std::sqrt(std::max(0.0, sum2[k] / kSamples - mean * mean) / kSamples);
+    // Four standard deviations of the mean, plus the quadrature's error (far smaller).
+    EXPECT_NEAR(mean, ref[k], 4 * sigma + 1e-5 * ref[k]) << "channel " << k << ", sigma " << sigma;
+  }
+}
+
+// With a small sun 3000 times brighter than the sky (most of the irradiance), straight up and
+// tilted towards and away from the sun.
+TEST(EnvironmentLight, IrradianceMatchesQuadratureOfTheMap) {
+  const RgbImage map = sky_map(64, 32, 3000.0f);
+  expect_irradiance(map, Rgb(1.0f, 0.8f, 1.2f), {0, 1, 0}, 0, {0, 1, 0});
+  expect_irradiance(map, Rgb(1.0f), {0, 1, 0}, 0, normalize(Vec3{0.5f, 0.4f, 0.3f}));
+  expect_irradiance(map, Rgb(1.0f), {0, 1, 0}, 0, normalize(Vec3{-0.6f, -0.2f, 0.5f}));
+}
+
+TEST(EnvironmentLight, IrradianceOfARotatedMapMatchesQuadrature) {
+  const RgbImage map = sky_map(64, 32, 3000.0f);
+  expect_irradiance(map, Rgb(0.5f, 1.0f, 2.0f), {1, 1, 0}, 70, {0, 1, 0});
+  expect_irradiance(map, Rgb(1.0f), {0.2f, -1, 0.5f}, -130, normalize(Vec3{0.3f, 0.2f, -0.9f}));
+}
+
+// Sampled directions fall in each pixel with probability luminance(Le) * solid angle / integral
+// (the pixel's share of the luminance integral), and report the density luminance(Le) / integral.
+TEST(EnvironmentLight, SampledDirectionsPassAChiSquareTestAgainstTheLuminance) {
+  constexpr int kW = 32, kH = 16, kSamples = 1000000;
+  const Rgb scale(0.5f, 1.0f, 2.0f);
+  const Vec3 axis{0.3f, 1, -0.4f};
+  const double degrees = 35;
+  const RgbImage map = sky_map(kW, kH, 200.0f);
+  const EnvironmentLight light(map, scale, rotate(float(degrees), axis));
+  std::vector<double> expected(kW * kH), observed(kW * kH, 0.0);
+  double total = 0;
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x)
+      total += expected[y * kW + x] =
+          (scale * map.at(x, y)).luminance() * pixel_solid_angle(y, kW, kH);
+  Pcg32 rng(5);
+  int pdf_mismatches = 0;
+  for (int i = 0; i < kSamples; ++i) {
+    const LightSample ls = light.sample_li({}, {rng.next_float(), rng.next_float()});
+    int x, y;
+    map_pixel(rotate_about(ls.wi, axis, -degrees), kW, kH, x, y);
+    observed[y * kW + x] += 1;
+    const double pdf = (scale * map.at(x, y)).luminance() / total;
+    if (std::fabs(ls.pdf - pdf) > 1e-4 * pdf) ++pdf_mismatches;  // only by rounding on an edge
+  }
+  EXPECT_LE(pdf_mismatches, kSamples / 10000);
+  // Pearson's statistic; black pixels must stay (all but) empty, bins expecting under 5 are pooled.
+  double chi2 = 0, pooled_expected = 0, pooled_observed = 0, black = 0;
+  int dof = -1;
+  for (int i = 0; i < kW * kH; ++i) {
+    const double e = expected[i] / total * kSamples;
+    if (e == 0)
+      black += observed[i];
+    else if (e < 5)
+      pooled_expected += e, pooled_observed += observed[i];
+    else
+      chi2 += (observed[i] - e) * (observed[i] - e) / e, ++dof;
+  }
+  if (pooled_expected > 0)
+    chi2 +=
+        (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected,
+        ++dof;
+  EXPECT_LE(black, kSamples / 100000);
+  // Chi-square of k degrees of freedom: mean k, variance 2k; six deviations above the mean.
+  RecordProperty("chi2", std::to_string(chi2) + " dof " + std::to_string(dof));
+  EXPECT_LT(chi2, dof + 6 * std::sqrt(2.0 * dof));
+}
+
+// pdf_li is exactly the density sample_li reports, and le along the sampled direction is li;
+// pdf_le agrees with sample_le.
+TEST(EnvironmentLight, PdfLiEqualsTheSamplePdf) {
+  EnvironmentLight light(sky_map(64, 32, 3000.0f), Rgb(1.0f), rotate(50, {1, 2, 3}));
+  light.preprocess(Bounds3({-1, 0, -2}, {3, 1, 2}));
+  Pcg32 rng(9);
+  const Vec3 p{0.5f, 0.5f, 0.5f};
+  for (int i = 0; i < 50000; ++i) {
+    const LightSample ls = light.sample_li(p, {rng.next_float(), rng.next_float()});
+    ASSERT_NEAR(length(ls.wi), 1.0f, 1e-5f);
+    ASSERT_TRUE(ls.pdf > 0 && std::isfinite(ls.pdf) && !ls.delta && ls.distance == kInfinity);
+    ASSERT_EQ(light.pdf_li(p, ls.wi, {}), ls.pdf);
+    ASSERT_EQ(light.le(Ray{p, ls.wi}), ls.li);
+    const LightLeSample le = light.sample_le({rng.next_float(), rng.next_float()},
+                                             {rng.next_float(), rng.next_float()}, 0);
+    float pdf_pos = 0, pdf_dir = 0;
+    light.pdf_le(le.ray, {}, pdf_pos, pdf_dir);
+    ASSERT_EQ(pdf_dir, le.pdf_dir);
+    ASSERT_EQ(pdf_pos, le.pdf_pos);
+    ASSERT_EQ(light.le(Ray{p, -le.ray.d}), le.l);
+  }
+}
+
+// A constant map is sampled uniformly, also inside each pixel: density 1 / (4 pi) in every
+// direction, and samples spread evenly over 16 x 16 bins of equal solid angle (equal steps in
+// world-frame y and azimuth), whose boundaries cut across the 4 x 2 map's pixels.
+TEST(EnvironmentLight, ConstantMapHasUniformPdf) {
+  constexpr int kBins = 16, kSamples = 200000;
+  for (float degrees : {0.0f, 33.0f}) {
+    const EnvironmentLight light(RgbImage(4, 2, Rgb(0.7f, 0.3f, 0.1f)), Rgb(2.0f),
+                                 rotate(degrees, {1, 0, 1}));
+    Pcg32 rng(1);
+    const float uniform = float(1 / (4 * kPi));
+    std::vector<double> observed(kBins * kBins, 0.0);
+    for (int i = 0; i < kSamples; ++i) {
+      const LightSample ls = light.sample_li({}, {rng.next_float(), rng.next_float()});
+      ASSERT_NEAR(ls.pdf, uniform, 1e-5f * uniform);
+      ASSERT_EQ(ls.li, Rgb(1.4f, 0.6f, 0.2f));
+      const Vec3 w = normalize(
+          Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f});
+      ASSERT_NEAR(light.pdf_li({}, w, {}), uniform, 1e-5f * uniform);
+      const int by = std::min(int((ls.wi.y + 1) / 2 * kBins), kBins - 1);
+      const double azimuth = std::atan2(double(ls.wi.x), double(ls.wi.z)) / (2 * kPi) + 0.5;
+      observed[by * kBins + std::min(int(azimuth * kBins), kBins - 1)] += 1;
+    }
+    // Chi-square of k = 255 degrees of freedom: mean k, variance 2k; six deviations above.
+    const double e = double(kSamples) / (kBins * kBins);
+    double chi2 = 0;
+    for (double o : observed) chi2 += (o - e) * (o - e) / e;
+    const int dof = kBins * kBins - 1;
+    EXPECT_LT(chi2, dof + 6 * std::sqrt(2.0 * dof)) << degrees << " degrees";
+  }
+}
+
+// "environment" with only a radiance is the uniform infinite light.
+TEST(EnvironmentLight, WithoutAMapItIsTheUniformInfiniteLight) {
+  const SceneParams params({{"type", "environment"}, {"radiance", {1, 2, 3}}}, "s.json",
+                           "/lights/0");
+  EnvironmentLight env(params);
+  UniformInfiniteLight uniform(Rgb(1, 2, 3));
+  const Bounds3 b({-1, -2, 0}, {4, 1, 1});
+  env.preprocess(b), uniform.preprocess(b);
+  Pcg32 rng(2);
+  for (int i = 0; i < 1000; ++i) {
+    const Vec3 w =
+        normalize(Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f});
+    EXPECT_EQ(env.le(Ray{{}, w}), uniform.le(Ray{{}, w}));
+    EXPECT_NEAR(env.pdf_li({}, w, {}), uniform.pdf_li({}, w, {}), 1e-8f);
+  }
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(env.power()[k], uniform.power()[k], 1e-5f * uniform.power()[k]);
+}
+
+// A map whose every pixel differs: the direction of each pixel's centre looks up that pixel,
+// without and with a rotation.
+TEST(EnvironmentLight, PixelCentresLookUpTheirPixels) {
+  constexpr int kW = 8, kH = 4;
+  RgbImage map(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) map.at(x, y) = Rgb(float(x), float(y), float(1 + x + kW * y));
+  const Vec3 axis{1, -2, 0.5f};
+  for (double degrees : {0.0, 100.0}) {
+    const EnvironmentLight light(map, Rgb(1, 2, 3), rotate(float(degrees), axis));
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        const Vec3 w = rotate_about(map_direction((x + 0.5) / kW, (y + 0.5) / kH), axis, degrees);
+        EXPECT_EQ(light.le(Ray{{5, 5, 5}, w}), Rgb(1, 2, 3) * map.at(x, y)) << x << ", " << y;
+      }
+  }
+}
+
+// Writes `map` as a PFM in `dir` and returns the path.
+std::string write_map(const test::TempDir& dir, const RgbImage& map, const std::string& name) {
+  const std::string path = dir.file(name);
+  write_pfm(map, path);
+  return path;
+}
+
+// The documented orientation, read through a scene's parameters: the image's top row is +y, its
+// centre column looks along -z, the column at u = 0.75 along +x; "transform" rotates it.
+TEST(EnvironmentLight, MapTopIsUpAndItsCentreLooksAlongMinusZ) {
+  constexpr int kW = 8, kH = 4;
+  RgbImage map(kW, kH);
+  for (int y = 0; y < kH; ++y)
+    for (int x = 0; x < kW; ++x) map.at(x, y) = Rgb(float(x), float(y), 0);
+  const test::TempDir dir;
+  const std::string path = write_map(dir, map, "m.pfm");
+  const EnvironmentLight plain(
+      SceneParams({{"type", "environment"}, {"map", path}}, "s.json", "/l"));
+  EXPECT_EQ(plain.le(Ray{{}, {0.1f, 1, 0.1f}}).g, 0);        // zenith: row 0
+  EXPECT_EQ(plain.le(Ray{{}, {0.1f, -1, 0.1f}}).g, kH - 1);  // nadir: the bottom row
+  EXPECT_EQ(plain.le(Ray{{}, {0.1f, 0.1f, -1}}), Rgb(kW / 2, kH / 2 - 1, 0));     // centre: -z
+  EXPECT_EQ(plain.le(Ray{{}, {1, 0.1f, 0.1f}}), Rgb(3 * kW / 4, kH / 2 - 1, 0));  // +x
+  EXPECT_EQ(plain.le(Ray{{}, {0.1f, 0.1f, 1}}).r, kW - 1);  // +z: the right edge
+  // Rotated 90 degrees about +y, (x, y, z) -> (z, y, -x): the centre now looks along -x.
+  const nlohmann::json rotation = {{{"rotate", {{"axis", {0, 1, 0}}, {"angle", 90}}}}};
+  const EnvironmentLight turned(SceneParams(
+      {{"type", "environment"}, {"map", path}, {"transform", rotation}}, "s.json", "/l"));
+  EXPECT_EQ(turned.le(Ray{{}, {-1, 0.1f, -0.1f}}), Rgb(kW / 2, kH / 2 - 1, 0));
+  EXPECT_EQ(turned.le(Ray{{}, {0.1f, 0.1f, -1}}),  // the map's +x column now looks along -z
+            Rgb(3 * kW / 4, kH / 2 - 1, 0));
+}
+
+// Photons: E[beta] of sample_le is the power, pi r^2 times the integral of Le over the sphere; the
+// rays pass through the bounding sphere.
+TEST(EnvironmentLight, EmittedRaysCarryThePower) {
+  EnvironmentLight light(sky_map(64, 32, 3000.0f), Rgb(1, 0.5f, 2), rotate(20, {0, 0, 1}));
+  const Bounds3 b({-1, 0, -2}, {3, 1, 2});
+  light.preprocess(b);
+  const Vec3 center = b.center();
+  const float radius = length(b.hi - center);
+  constexpr int kSamples = 200000;
+  Pcg32 rng(13);
+  double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+  for (int i = 0; i < kSamples; ++i) {
+    const LightLeSample s = light.sample_le({rng.next_float(), rng.next_float()},
+                                            {rng.next_float(), rng.next_float()}, 0.5f);
+    ASSERT_NEAR(s.pdf_pos, 1 / (kPi * radius * radius), 1e-5 / (radius * radius));
+    const Vec3 to_center = center - s.ray.o;
+    const float along = dot(to_center, s.ray.d);
+    ASSERT_GT(along, 0.999f * radius);  // starts one radius before the centre, heading in
+    ASSERT_LE(length(to_center - s.ray.d * along), radius * 1.0001f);
+    const Rgb beta = s.beta();
+    for (int k = 0; k < 3; ++k) sum[k] += beta[k], sum2[k] += double(beta[k]) * beta[k];
+  }
+  const Rgb power = light.power();
+  for (int k = 0; k < 3; ++k) {
+    const double mean = sum[k] / kSamples;
+    const double sigma = std::sqrt(std::max(0.0, sum2[k] / kSamples - mean * mean) / kSamples);
+    EXPECT_NEAR(mean, power[k], 4 * sigma + 1e-5 * power[k]) << "channel " << k;
+  }
+}
+
+// Each bad parameter is an InputError naming the scene file, the JSON path and the problem.
+TEST(EnvironmentLight, BadParametersNameTheFileAndJsonPath) {
+  const test::TempDir dir;
+  const std::string good = write_map(dir, RgbImage(4, 2, Rgb(1)), "good.pfm");
+  RgbImage nan_map(4, 2, Rgb(1));
+  nan_map.at(3, 1).g = std::nanf("");
+  const std::string bad_pixel = write_map(dir, nan_map, "nan.pfm");
+  test::write_bytes(dir.file("garbage.pfm"), "this is not a PFM file");
+  const auto expect_error = [](nlohmann::json params, const std::string& path,
+                               const std::string& problem) {
+    params["type"] = "environment";
+    try {
+      EnvironmentLight light(SceneParams(params, "scene.json", "/lights/0"));
+      ADD_FAILURE() << "no error for " << params.dump();
+    } catch (const InputError& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find("scene.json:/lights/0" + path), std::string::npos) << what;
+      EXPECT_NE(what.find(problem), std::string::npos) << what;
+    }
+  };
+  expect_error({{"map", dir.file("missing.pfm")}}, "/map", "not found");
+  expect_error({{"map", dir.file("garbage.pfm")}}, "/map", "not a PFM file");
+  expect_error({{"map", bad_pixel}}, "/map", "pixel (3, 1) is not finite");
+  expect_error({{"map", dir.file("sky.png")}}, "/map", ".exr or .pfm");
+  expect_error({{"map", ""}}, "/map", "must not be empty");
+  expect_error({{"map", good}, {"radiance", {1, -1, 1}}}, "/radiance", "non-negative");
+  expect_error({{"map", good}, {"transform", {{{"scale", 2}}}}}, "/transform", "rotation");
+  expect_error({{"transform", {{{"translate", {0, 1, 0}}}}}}, "/transform", "translation");
+  expect_error({{"transform", {{{"rotate", {{"angle", 5}}}}}}}, "/transform/0/rotate", "axis");
+  expect_error({{"map", good}, {"maps", good}}, "/maps", "unknown key");
+}
+
+// A scene file's relative "map" is found next to the scene file, wherever the program runs.
+TEST(EnvironmentLight, SceneLoaderResolvesTheMapRelativeToTheSceneFile) {
+  const test::TempDir dir;
+  std::filesystem::create_directories(dir.path() / "maps");
+  write_map(dir, RgbImage(4, 2, Rgb(0.25f, 0.5f, 0.75f)), "maps/flat.pfm");
+  test::write_bytes(dir.file("scene.json"), R"({
+    "camera": {"type": "pinhole"},
+    "lights": [{"type": "environment", "map": "maps/flat.pfm", "radiance": 2}],
+    "shapes": []})");
+  const SceneDesc desc = load_scene(dir.file("scene.json"));
+  ASSERT_EQ(desc.lights.size(), 1u);
+  const EnvironmentLight light(desc.lights[0]);
+  EXPECT_EQ(light.le(Ray{{}, {0, 1, 0}}), Rgb(0.5f, 1.0f, 1.5f));
+}
+
+// "environment" is a registered light type; the world lists it as infinite and rays that leave the
+// scene see it.
+TEST(EnvironmentLight, IsRegisteredAndLightsEscapingRays) {
+  const SceneDesc desc = parse_scene(R"({
+    "camera": {"type": "pinhole", "position": [0, 0, -3], "look_at": [0, 0, 0]},
+    "materials": {"m": {"type": "diffuse", "albedo": 0.5}},
+    "lights": [{"type": "environment", "radiance": [0.5, 1, 2]}],
+    "shapes": [{"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": "m"}]})",
+                                     "env.json", "");
+  const World world(desc, "brute");
+  ASSERT_EQ(world.infinite_lights().size(), 1u);
+  EXPECT_EQ(world.infinite_lights()[0]->kind(), LightKind::kInfinite);
+  EXPECT_EQ(world.escaped(Ray{{0, 0, 5}, {0, 1, 0}}), Rgb(0.5f, 1, 2));
+  const auto types = light_types();
+  EXPECT_NE(std::find(types.begin(), types.end(), "environment"), types.end());
+}
+
+}  // namespace
+}  // namespace penumbra
