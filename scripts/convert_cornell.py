@@ -14,8 +14,8 @@ never fixed silently. The output needs nothing but itself.
 import json
 import sys
 
-RENDER = {"resolution": None, "spp": 256, "seed": 0,
-          "integrator": "path", "accel": "bvh", "background": [0.0, 0.0, 0.0]}
+RENDER = {"resolution": None, "spp": 1024, "seed": 0,
+          "integrator": "path", "sampler": "sobol", "accel": "bvh", "background": [0.0, 0.0, 0.0]}
 
 
 def sub(a, b):

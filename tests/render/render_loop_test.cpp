@@ -127,7 +127,8 @@ TEST(RenderLoop, TimeLimitStopsBetweenPasses) {
   EXPECT_TRUE(stats.complete());
   EXPECT_GT(stats.spp_done, 0);
   EXPECT_LT(stats.spp_done, 1 << 20);
-  EXPECT_LT(stats.seconds, 0.3 * 1.5 + 0.2);
+  // Passes are sized by the pace so far; a loaded machine may slow the last one down.
+  EXPECT_LT(stats.seconds, 0.3 * 2.0 + 0.5);
   for (int y = 0; y < 14; ++y)
     for (int x = 0; x < 20; ++x) EXPECT_EQ(job.film->samples(x, y), uint32_t(stats.spp_done));
 }

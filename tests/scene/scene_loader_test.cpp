@@ -64,7 +64,7 @@ TEST(SceneLoader, LoadsCornellBox) {
   EXPECT_EQ(s.camera.get_float("vfov", 0), 39.307648f);
   EXPECT_EQ(s.render.width, 256);
   EXPECT_EQ(s.render.height, 256);
-  EXPECT_EQ(s.render.spp, 256);
+  EXPECT_EQ(s.render.spp, 1024);
   EXPECT_EQ(s.render.integrator, "path");
   EXPECT_EQ(s.materials.size(), 4u);
   ASSERT_EQ(s.shapes.size(), 8u);

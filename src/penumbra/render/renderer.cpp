@@ -105,7 +105,7 @@ RenderStats render_passes(RenderJob& job, SamplingIntegrator& integrator) {
       const size_t n = totals.tiles_done.fetch_add(1, std::memory_order_relaxed) + 1;
       if (opt.on_progress) {
         RenderProgress p;
-        p.spp_done = first;
+        p.spp_done = n == tiles ? first + count : first;
         p.spp_target = stats.spp_target;
         p.fraction = (double(first) + double(count) * double(n) / double(tiles)) /
                      double(stats.spp_target);

@@ -31,14 +31,21 @@ constexpr uint32_t sobol_dim1(uint32_t i) {
 /// The hash-based nested uniform (Owen) scramble of a 32-bit fraction (Burley 2020, "Practical
 /// Hash-based Owen Scrambling", JCGT 9(4)): the Laine-Karras permutation applied to the
 /// bit-reversed value, so each bit is flipped depending only on the bits above it.
-constexpr uint32_t owen_scramble(uint32_t v, uint32_t seed) {
-  uint32_t x = reverse_bits(v);
+constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
   x += seed;
   x ^= x * 0x6c50b47cu;
   x ^= x * 0xb82f1e52u;
   x ^= x * 0xc7afe638u;
   x ^= x * 0x8d22f6e6u;
-  return reverse_bits(x);
+  return x;
+}
+constexpr uint32_t owen_scramble(uint32_t v, uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(reverse_bits(v), seed));
+}
+
+/// owen_scramble(sobol_dim0(i), seed) without its two cancelling bit reversals.
+constexpr uint32_t owen_scrambled_dim0(uint32_t i, uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(i, seed));
 }
 
 /// Element i of a pseudo-random permutation of [0, n) chosen by `seed`, without tables
