@@ -46,6 +46,34 @@ Vec3 rotate_about(Vec3 v, Vec3 axis, double degrees) {
 double pixel_solid_angle(int y, int width, int height) {
   return 2 * kPi / width * (std::cos(kPi * y / height) - std::cos(kPi * (y + 1) / height));
 }
+// The documented lookup: bilinear between pixel centres, wrapping in u, clamped in v.
+Rgb bilinear(const RgbImage& map, double u, double v) {
+  const int w = map.width(), h = map.height();
+  const double x = u * w - 0.5, y = v * h - 0.5, fx = std::floor(x), fy = std::floor(y);
+  const int x0 = ((int(fx) % w) + w) % w, x1 = (x0 + 1) % w;
+  const int y0 = std::clamp(int(fy), 0, h - 1), y1 = std::clamp(int(fy) + 1, 0, h - 1);
+  const float tx = float(x - fx), ty = float(y - fy);
+  return (map.at(x0, y0) * (1 - tx) + map.at(x1, y0) * tx) * (1 - ty) +
+         (map.at(x0, y1) * (1 - tx) + map.at(x1, y1) * tx) * ty;
+}
+// Calls f(map-frame direction, map point u, v, solid angle) at the nodes of a quadrature over
+// pixel (x, y): kSub equal steps in phi and in theta, midpoints in phi and two Gauss-Legendre
+// nodes in theta (dOmega = 2 pi du * pi sin(pi v) dv). Pixel centres lie on step boundaries,
+// so the bilinear interpolant is linear inside every step and the error is of order step^4.
+template <class F>
+void pixel_quadrature(int x, int y, int w, int h, F&& f) {
+  constexpr int kSub = 16;
+  const double node = 0.5 / std::sqrt(3.0);
+  for (int a = 0; a < kSub; ++a)
+    for (double t : {0.5 - node, 0.5 + node}) {
+      const double v = (y + (a + t) / kSub) / h;
+      const double d_omega = 2 * kPi / (w * kSub) * kPi * std::sin(kPi * v) * 0.5 / (kSub * h);
+      for (int b = 0; b < kSub; ++b) {
+        const double u = (x + (b + 0.5) / kSub) / w;
+        f(map_direction(u, v), u, v, d_omega);
+      }
+    }
+}
 
 // A sky: a coloured gradient over a ground with black pixels, a pure blue pixel (luminance far
 // below its largest channel) and a 2 x 2 sun of radiance `sun` at columns 40-41 of 64, rows 9-10.
@@ -64,29 +92,20 @@ RgbImage sky_map(int w, int h, float sun) {
 }
 
 // Monte Carlo irradiance at a point of normal n (sum of Le cos / pdf over sample_li, no
-// occlusion) against the map's integral of L max(0, cos) over the sphere, by 16 x 16 midpoint
-// quadrature in (phi, cos theta) over every pixel; the map is rotated by (axis, degrees).
+// occlusion) against the integral of Le max(0, cos) over the sphere, by quadrature over every
+// pixel with the documented bilinear lookup; the map is rotated by (axis, degrees).
 void expect_irradiance(const RgbImage& map, Rgb scale, Vec3 axis, double degrees, Vec3 n) {
   const EnvironmentLight light(map, scale, rotate(float(degrees), axis));
   const Vec3 n_map = rotate_about(n, axis, -degrees);
-  const int w = map.width(), h = map.height(), kSub = 16;
+  const int w = map.width(), h = map.height();
   double ref[3] = {0, 0, 0};
-  for (int y = 0; y < h; ++y) {
-    const double z0 = std::cos(kPi * y / h), z1 = std::cos(kPi * (y + 1) / h);
-    for (int x = 0; x < w; ++x) {
-      double cos_sum = 0;
-      for (int a = 0; a < kSub; ++a)
-        for (int b = 0; b < kSub; ++b) {
-          const double z = z0 + (a + 0.5) / kSub * (z1 - z0);
-          const double phi = 2 * kPi * ((x + (b + 0.5) / kSub) / w - 0.5);
-          const double s = std::sqrt(1 - z * z);
-          const double c = n_map.x * s * std::sin(phi) + n_map.y * z - n_map.z * s * std::cos(phi);
-          cos_sum += std::max(0.0, c);
-        }
-      const double weight = cos_sum / (kSub * kSub) * pixel_solid_angle(y, w, h);
-      for (int k = 0; k < 3; ++k) ref[k] += scale[k] * map.at(x, y)[k] * weight;
-    }
-  }
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      pixel_quadrature(x, y, w, h, [&](Vec3 dir, double u, double v, double d_omega) {
+        const Rgb le = scale * bilinear(map, u, v);
+        const double weight = std::max(0.0f, dot(n_map, dir)) * d_omega;
+        for (int k = 0; k < 3; ++k) ref[k] += le[k] * weight;
+      });
   constexpr int kSamples = 200000;
   Pcg32 rng(42);
   double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
@@ -123,21 +142,28 @@ TEST(EnvironmentLight, IrradianceOfARotatedMapMatchesQuadrature) {
   expect_irradiance(map, Rgb(1.0f), {0.2f, -1, 0.5f}, -130, normalize(Vec3{0.3f, 0.2f, -0.9f}));
 }
 
-// Sampled directions fall in each pixel with probability luminance(Le) * solid angle / integral
-// (the pixel's share of the luminance integral), and report the density luminance(Le) / integral.
+// Sampled directions fall in each pixel with probability (integral of luminance(Le) over the
+// pixel) / (integral over the sphere), the pixel's share of the luminance integral, computed by
+// quadrature of the documented bilinear Le; each reports that share over the pixel's solid angle.
 TEST(EnvironmentLight, SampledDirectionsPassAChiSquareTestAgainstTheLuminance) {
   constexpr int kW = 32, kH = 16, kSamples = 1000000;
   const Rgb scale(0.5f, 1.0f, 2.0f);
   const Vec3 axis{0.3f, 1, -0.4f};
   const double degrees = 35;
-  const RgbImage map = sky_map(kW, kH, 200.0f);
+  RgbImage map = sky_map(kW, kH, 200.0f);
+  for (int y = 12; y < kH; ++y)  // a black band: rows 13 to 15 are out of the interpolation's reach
+    for (int x = 0; x < kW; ++x) map.at(x, y) = Rgb(0.0f);
   const EnvironmentLight light(map, scale, rotate(float(degrees), axis));
   std::vector<double> expected(kW * kH), observed(kW * kH, 0.0);
   double total = 0;
   for (int y = 0; y < kH; ++y)
-    for (int x = 0; x < kW; ++x)
-      total += expected[y * kW + x] =
-          (scale * map.at(x, y)).luminance() * pixel_solid_angle(y, kW, kH);
+    for (int x = 0; x < kW; ++x) {
+      double e = 0;  // the integral of luminance(Le) over the pixel
+      pixel_quadrature(x, y, kW, kH, [&](Vec3, double u, double v, double d_omega) {
+        e += (scale * bilinear(map, u, v)).luminance() * d_omega;
+      });
+      total += expected[y * kW + x] = e;
+    }
   Pcg32 rng(5);
   int pdf_mismatches = 0;
   for (int i = 0; i < kSamples; ++i) {
@@ -145,7 +171,7 @@ TEST(EnvironmentLight, SampledDirectionsPassAChiSquareTestAgainstTheLuminance) {
     int x, y;
     map_pixel(rotate_about(ls.wi, axis, -degrees), kW, kH, x, y);
     observed[y * kW + x] += 1;
-    const double pdf = (scale * map.at(x, y)).luminance() / total;
+    const double pdf = expected[y * kW + x] / total / pixel_solid_angle(y, kW, kH);
     if (std::fabs(ls.pdf - pdf) > 1e-4 * pdf) ++pdf_mismatches;  // only by rounding on an edge
   }
   EXPECT_LE(pdf_mismatches, kSamples / 10000);
@@ -165,6 +191,7 @@ TEST(EnvironmentLight, SampledDirectionsPassAChiSquareTestAgainstTheLuminance) {
     chi2 +=
         (pooled_observed - pooled_expected) * (pooled_observed - pooled_expected) / pooled_expected,
         ++dof;
+  EXPECT_EQ(dof, kW * (kH - 3) - 1);  // every pixel but the black band's last three rows
   EXPECT_LE(black, kSamples / 100000);
   // Chi-square of k degrees of freedom: mean k, variance 2k; six deviations above the mean.
   RecordProperty("chi2", std::to_string(chi2) + " dof " + std::to_string(dof));
@@ -244,8 +271,13 @@ TEST(EnvironmentLight, WithoutAMapItIsTheUniformInfiniteLight) {
     EXPECT_NEAR(env.power()[k], uniform.power()[k], 1e-5f * uniform.power()[k]);
 }
 
-// A map whose every pixel differs: the direction of each pixel's centre looks up that pixel,
-// without and with a rotation.
+// Expects a and b equal per channel within `tolerance`.
+void expect_rgb_near(Rgb a, Rgb b, float tolerance, const std::string& what) {
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a[k], b[k], tolerance) << what << ", channel " << k;
+}
+
+// A map whose every pixel differs: the direction of each pixel's centre looks up that pixel
+// (up to rounding of the interpolation weights), without and with a rotation.
 TEST(EnvironmentLight, PixelCentresLookUpTheirPixels) {
   constexpr int kW = 8, kH = 4;
   RgbImage map(kW, kH);
@@ -257,7 +289,8 @@ TEST(EnvironmentLight, PixelCentresLookUpTheirPixels) {
     for (int y = 0; y < kH; ++y)
       for (int x = 0; x < kW; ++x) {
         const Vec3 w = rotate_about(map_direction((x + 0.5) / kW, (y + 0.5) / kH), axis, degrees);
-        EXPECT_EQ(light.le(Ray{{5, 5, 5}, w}), Rgb(1, 2, 3) * map.at(x, y)) << x << ", " << y;
+        expect_rgb_near(light.le(Ray{{5, 5, 5}, w}), Rgb(1, 2, 3) * map.at(x, y), 1e-3f,
+                        std::to_string(x) + ", " + std::to_string(y));
       }
   }
 }
@@ -269,8 +302,16 @@ std::string write_map(const test::TempDir& dir, const RgbImage& map, const std::
   return path;
 }
 
+// The direction at `azimuth` degrees from -z towards +x and `elevation` degrees above the horizon.
+Vec3 sky_direction(double azimuth, double elevation) {
+  const double a = azimuth * kPi / 180, e = elevation * kPi / 180;
+  return {float(std::cos(e) * std::sin(a)), float(std::sin(e)), float(-std::cos(e) * std::cos(a))};
+}
+
 // The documented orientation, read through a scene's parameters: the image's top row is +y, its
-// centre column looks along -z, the column at u = 0.75 along +x; "transform" rotates it.
+// centre column looks along -z, the column at u = 0.75 along +x, the left and right edges meet
+// at +z; "transform" rotates it. An 8 x 4 map of pixels (x, y, 0) has its pixel centres every
+// 45 degrees of azimuth and elevation, from 22.5 degrees.
 TEST(EnvironmentLight, MapTopIsUpAndItsCentreLooksAlongMinusZ) {
   constexpr int kW = 8, kH = 4;
   RgbImage map(kW, kH);
@@ -280,18 +321,21 @@ TEST(EnvironmentLight, MapTopIsUpAndItsCentreLooksAlongMinusZ) {
   const std::string path = write_map(dir, map, "m.pfm");
   const EnvironmentLight plain(
       SceneParams({{"type", "environment"}, {"map", path}}, "s.json", "/l"));
-  EXPECT_EQ(plain.le(Ray{{}, {0.1f, 1, 0.1f}}).g, 0);        // zenith: row 0
-  EXPECT_EQ(plain.le(Ray{{}, {0.1f, -1, 0.1f}}).g, kH - 1);  // nadir: the bottom row
-  EXPECT_EQ(plain.le(Ray{{}, {0.1f, 0.1f, -1}}), Rgb(kW / 2, kH / 2 - 1, 0));     // centre: -z
-  EXPECT_EQ(plain.le(Ray{{}, {1, 0.1f, 0.1f}}), Rgb(3 * kW / 4, kH / 2 - 1, 0));  // +x
-  EXPECT_EQ(plain.le(Ray{{}, {0.1f, 0.1f, 1}}).r, kW - 1);  // +z: the right edge
-  // Rotated 90 degrees about +y, (x, y, z) -> (z, y, -x): the centre now looks along -x.
+  const auto le = [](const EnvironmentLight& light, double azimuth, double elevation) {
+    return light.le(Ray{{}, sky_direction(azimuth, elevation)});
+  };
+  EXPECT_NEAR(le(plain, 10, 90).g, 0, 1e-6f);        // zenith: row 0
+  EXPECT_NEAR(le(plain, 10, -90).g, kH - 1, 1e-6f);  // nadir: the bottom row
+  expect_rgb_near(le(plain, 22.5, 22.5), Rgb(4, 1, 0), 1e-3f, "just right of -z, above");
+  expect_rgb_near(le(plain, -22.5, -22.5), Rgb(3, 2, 0), 1e-3f, "just left of -z, below");
+  expect_rgb_near(le(plain, 112.5, 22.5), Rgb(6, 1, 0), 1e-3f, "just past +x");
+  expect_rgb_near(le(plain, 180, 22.5), Rgb(3.5f, 1, 0), 1e-3f, "+z: the seam, columns 7 and 0");
+  // Rotated 90 degrees about +y, (x, y, z) -> (z, y, -x): azimuths decrease by 90 degrees.
   const nlohmann::json rotation = {{{"rotate", {{"axis", {0, 1, 0}}, {"angle", 90}}}}};
   const EnvironmentLight turned(SceneParams(
       {{"type", "environment"}, {"map", path}, {"transform", rotation}}, "s.json", "/l"));
-  EXPECT_EQ(turned.le(Ray{{}, {-1, 0.1f, -0.1f}}), Rgb(kW / 2, kH / 2 - 1, 0));
-  EXPECT_EQ(turned.le(Ray{{}, {0.1f, 0.1f, -1}}),  // the map's +x column now looks along -z
-            Rgb(3 * kW / 4, kH / 2 - 1, 0));
+  expect_rgb_near(le(turned, 22.5 - 90, 22.5), Rgb(4, 1, 0), 1e-3f, "rotated");
+  expect_rgb_near(le(turned, 112.5 - 90, 22.5), Rgb(6, 1, 0), 1e-3f, "rotated +x");
 }
 
 // Photons: E[beta] of sample_le is the power, pi r^2 times the integral of Le over the sphere; the

@@ -91,25 +91,48 @@ EnvironmentLight::EnvironmentLight(const SceneParams& params) {
 void EnvironmentLight::build() {
   if (map_.empty()) map_ = RgbImage(1, 1, Rgb(1.0f));
   const int w = map_.width(), h = map_.height();
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i)
+      for (int k = 0; k < 3; ++k) map_.at(i, j)[k] = std::fmax(map_.at(i, j)[k], 0.0f);
+
   // Row boundaries in cos(theta), from the zenith (+1) down to the nadir (-1).
   row_z_.resize(h + 1);
   for (int j = 0; j <= h; ++j) row_z_[j] = std::cos(kPiD * j / h);
   row_z_[0] = 1.0, row_z_[h] = -1.0;
 
-  // Sampling weights: luminance times (a multiple of) the pixel's solid angle; the integral of Le.
+  // The exact integral of the bilinear Le over each pixel's patch of the sphere. Across columns
+  // (uniform in phi) the footprint average of the interpolant weighs the neighbours 1/8, 3/4,
+  // 1/8; across rows, the hat functions are integrated against dz = sin(theta) dtheta in closed
+  // form: f(v0, v1, a) = integral over [v0, v1] (in pixel rows) of (v - a) dz, g = that of dz.
+  const double c = kPiD / h;
+  const auto p = [c](double v, double a) {
+    return -(v - a) * std::cos(c * v) + std::sin(c * v) / c;
+  };
+  const auto f = [&p](double v0, double v1, double a) { return p(v1, a) - p(v0, a); };
+  const auto g = [c](double v0, double v1) { return std::cos(c * v0) - std::cos(c * v1); };
+  constexpr double kColumn[3] = {0.125, 0.75, 0.125};
   std::vector<float> weights(static_cast<size_t>(w) * h);
   row_factor_.resize(h);
   double sum[3] = {0, 0, 0};
   for (int j = 0; j < h; ++j) {
-    const double dz = row_z_[j] - row_z_[j + 1];
-    const double solid_angle = 2.0 * kPiD / w * dz;
-    row_factor_[j] = static_cast<float>(1.0 / (2.0 * kPiD * h * dz));
+    row_factor_[j] = static_cast<float>(1.0 / (2.0 * kPiD * h * (row_z_[j] - row_z_[j + 1])));
+    // Upper half [j, j + 1/2) blends rows j - 1 and j, the lower half rows j and j + 1.
+    const double up_self = f(j, j + 0.5, j - 0.5), down_next = f(j + 0.5, j + 1.0, j + 0.5);
+    const double row_weight[3] = {g(j, j + 0.5) - up_self,
+                                  up_self + g(j + 0.5, j + 1.0) - down_next, down_next};
+    const int rows[3] = {std::max(j - 1, 0), j, std::min(j + 1, h - 1)};  // clamped at the poles
     for (int i = 0; i < w; ++i) {
-      Rgb& c = map_.at(i, j);
-      for (int k = 0; k < 3; ++k) c[k] = std::fmax(c[k], 0.0f);  // no negative radiance
-      const Rgb le = scale_ * c;
-      weights[static_cast<size_t>(j) * w + i] = static_cast<float>(le.luminance() * dz);
-      for (int k = 0; k < 3; ++k) sum[k] += le[k] * solid_angle;
+      const int cols[3] = {(i + w - 1) % w, i, (i + 1) % w};  // wrapping around in phi
+      double e[3] = {0, 0, 0};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const Rgb px = map_.at(cols[b], rows[a]);
+          const double weight = 2.0 * kPiD / w * row_weight[a] * kColumn[b];
+          for (int k = 0; k < 3; ++k) e[k] += weight * scale_[k] * px[k];
+        }
+      weights[static_cast<size_t>(j) * w + i] =
+          static_cast<float>(Rgb(float(e[0]), float(e[1]), float(e[2])).luminance());
+      for (int k = 0; k < 3; ++k) sum[k] += e[k];
     }
   }
   integral_ = Rgb(float(sum[0]), float(sum[1]), float(sum[2]));
@@ -121,14 +144,30 @@ void EnvironmentLight::preprocess(const Bounds3& b) {
   radius_ = std::fmax(radius_, 1e-3f);  // an empty scene still gets a finite disc
 }
 
-EnvironmentLight::Pixel EnvironmentLight::pixel_of(Vec3 w) const {
-  const int width = map_.width(), height = map_.height();
-  const float theta = std::acos(std::clamp(w.y, -1.0f, 1.0f));
-  const float u = 0.5f + std::atan2(w.x, -w.z) * (0.5f / kPi);
-  Pixel px;
-  px.x = std::clamp(static_cast<int>(u * width), 0, width - 1);
-  px.y = std::clamp(static_cast<int>(theta * (height / kPi)), 0, height - 1);
-  return px;
+Vec2 EnvironmentLight::uv_of(Vec3 w) const {
+  return {0.5f + std::atan2(w.x, -w.z) * (0.5f / kPi),
+          std::acos(std::clamp(w.y, -1.0f, 1.0f)) / kPi};
+}
+
+EnvironmentLight::Pixel EnvironmentLight::pixel_of(Vec2 uv) const {
+  const int w = map_.width(), h = map_.height();
+  return {std::clamp(static_cast<int>(uv.x * w), 0, w - 1),
+          std::clamp(static_cast<int>(uv.y * h), 0, h - 1)};
+}
+
+Rgb EnvironmentLight::lookup(Vec2 uv) const {
+  // Bilinear between pixel centres, wrapping around in u and clamped at the poles; a + t (b - a)
+  // keeps a constant map exactly constant.
+  const int w = map_.width(), h = map_.height();
+  const float x = uv.x * w - 0.5f, y = uv.y * h - 0.5f;
+  const float fx = std::floor(x), fy = std::floor(y);
+  const float tx = x - fx, ty = y - fy;
+  const int x0 = (static_cast<int>(fx) % w + w) % w, x1 = x0 + 1 == w ? 0 : x0 + 1;
+  const int y0 = std::clamp(static_cast<int>(fy), 0, h - 1);
+  const int y1 = std::clamp(static_cast<int>(fy) + 1, 0, h - 1);
+  const Rgb top = map_.at(x0, y0) + (map_.at(x1, y0) - map_.at(x0, y0)) * tx;
+  const Rgb bottom = map_.at(x0, y1) + (map_.at(x1, y1) - map_.at(x0, y1)) * tx;
+  return scale_ * (top + (bottom - top) * ty);
 }
 
 Vec3 EnvironmentLight::direction_of(const Sample2D& s) const {
@@ -154,26 +193,25 @@ LightSample EnvironmentLight::sample_li(Vec3, Vec2 u) const {
   ls.wi = direction_of(distribution_.sample(u));
   ls.distance = kInfinity;
   // Radiance and density from the direction itself, exactly as le and pdf_li compute them.
-  const Pixel px = pixel_of(to_map(ls.wi));
-  ls.pdf = pdf_of(px);
-  if (ls.pdf > 0.0f) ls.li = scale_ * map_.at(px.x, px.y);
+  const Vec2 uv = uv_of(to_map(ls.wi));
+  ls.pdf = pdf_of(pixel_of(uv));
+  if (ls.pdf > 0.0f) ls.li = lookup(uv);
   return ls;
 }
 
 float EnvironmentLight::pdf_li(Vec3, Vec3 wi, const LightPoint&) const {
-  return pdf_of(pixel_of(to_map(wi)));
+  return pdf_of(pixel_of(uv_of(to_map(wi))));
 }
 
 Rgb EnvironmentLight::le(const Ray& ray) const {
-  const Pixel px = pixel_of(to_map(ray.d));
-  return scale_ * map_.at(px.x, px.y);
+  return lookup(uv_of(to_map(ray.d)));
 }
 
 LightLeSample EnvironmentLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) const {
   LightLeSample s;
   const Vec3 w = direction_of(distribution_.sample(u_dir));  // the direction light arrives from
-  const Pixel px = pixel_of(to_map(w));
-  s.pdf_dir = pdf_of(px);
+  const Vec2 uv = uv_of(to_map(w));
+  s.pdf_dir = pdf_of(pixel_of(uv));
   if (!(s.pdf_dir > 0.0f)) return s;
   // Origin on the disc of the bounding sphere that faces w, one radius out.
   const Vec2 d = sample_concentric_disk(u_pos);
@@ -182,7 +220,7 @@ LightLeSample EnvironmentLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) co
   s.ray.o = center_ + (w + t * d.x + b * d.y) * radius_;
   s.ray.d = -w;
   s.ray.time = time;
-  s.l = scale_ * map_.at(px.x, px.y);
+  s.l = lookup(uv);
   s.pdf_pos = 1.0f / (kPi * radius_ * radius_);
   return s;
 }

@@ -27,20 +27,22 @@ namespace penumbra {
 /// Row 0 (the image's top) is the zenith +y, the bottom row the nadir -y; the image's centre
 /// column looks along -z, the column at u = 0.75 along +x and the left/right edges along +z, so
 /// seen from inside the sphere the image is not mirrored. For a unit direction w = (x, y, z):
-///   u = 0.5 + atan2(x, -z) / (2 pi),   v = acos(y) / pi,   pixel (floor(u W), floor(v H));
+///   u = 0.5 + atan2(x, -z) / (2 pi),   v = acos(y) / pi,   in pixel (floor(u W), floor(v H)),
 ///   w(u, v) = (sin(theta) sin(phi), cos(theta), -sin(theta) cos(phi)), theta = pi v,
-///   phi = 2 pi (u - 0.5).
-/// A map point (u, v) shows the world direction transform(w(u, v)).
+///   phi = 2 pi (u - 0.5);
+/// pixel (x, y) is centred on u = (x + 0.5) / W, v = (y + 0.5) / H, where Le is its value. A map
+/// point (u, v) shows the world direction transform(w(u, v)).
 ///
-/// Lookup is nearest-pixel (no filtering), so the radiance is constant on each pixel's patch of
-/// the sphere, and so is the sampling density: a pixel is chosen with probability proportional to
-/// luminance(radiance * pixel) times the pixel's solid angle (2 pi / W) (cos theta_j -
-/// cos theta_j+1), by a Distribution2D (marginal over rows, conditional per row), and the
-/// direction is uniform in solid angle within the pixel (uniform in phi and cos theta). The
-/// density is therefore pdf = P(pixel) / solid_angle(pixel), exactly proportional to the
-/// luminance of Le; a constant map gives 1 / (4 pi) everywhere, and nothing diverges at the poles.
-/// (Luminance is positive whenever a non-negative colour is not black, so every direction with
-/// Le > 0 has a positive density.)
+/// Lookup is bilinear between pixel centres (wrapping around in u, clamped at the poles), and
+/// sampling is piecewise constant (as in pbrt-v4): a pixel is chosen with probability
+/// proportional to the luminance of the exact integral of Le over the pixel's patch of the sphere
+/// (its solid angle (2 pi / W) (cos theta_j - cos theta_j+1) times the mean of the interpolated
+/// Le there), by a Distribution2D (marginal over rows, conditional per row); the direction is
+/// then uniform in solid angle within the pixel (uniform in phi and in cos theta). The density is
+/// pdf = P(pixel) / solid_angle(pixel): nothing diverges at the poles, a constant map gives
+/// 1 / (4 pi) everywhere, and it is positive wherever Le > 0 (every pixel whose interpolation
+/// reaches a non-black pixel gets a positive weight; luminance is positive for every non-black
+/// non-negative colour).
 ///
 /// Emitted rays (sample_le) take a direction from the map and an origin on the disc of the
 /// scene's bounding-sphere radius r facing it, pdf_pos = 1 / (pi r^2); power() = pi r^2 times
@@ -73,8 +75,12 @@ class EnvironmentLight final : public Light {
     int x = 0, y = 0;
   };
   void build();
-  /// The pixel seen along the unit map-frame direction w.
-  Pixel pixel_of(Vec3 w) const;
+  /// Map coordinates (u, v) in [0, 1]^2 of the unit map-frame direction w.
+  Vec2 uv_of(Vec3 w) const;
+  /// The pixel that contains map point uv.
+  Pixel pixel_of(Vec2 uv) const;
+  /// Le at map point uv: the map interpolated bilinearly, times the radiance scale.
+  Rgb lookup(Vec2 uv) const;
   /// A direction in the world frame (unit) and map frame from a map sample.
   Vec3 direction_of(const Sample2D& s) const;
   /// Solid-angle density of sampling the map-frame direction's pixel.
