@@ -38,6 +38,16 @@ inline void bounding_sphere(const Bounds3& b, Vec3& center, float& radius) {
   radius = length(b.hi - center);
 }
 
+/// The origin of a ray arriving from direction `w` (unit, pointing away from the scene) at a scene
+/// bounded by the sphere (center, radius): a point of the disc of that radius facing w, one radius
+/// out along w, uniform for uniform u. The density of origins is 1 / (pi radius^2).
+inline Vec3 sample_disc_origin(Vec3 center, float radius, Vec3 w, Vec2 u) {
+  const Vec2 d = sample_concentric_disk(u);
+  Vec3 t, b;
+  orthonormal_basis(w, t, b);
+  return center + (w + t * d.x + b * d.y) * radius;
+}
+
 /// Power heuristic with exponent 2 (Veach, Guibas 1995, "Optimally Combining Sampling Techniques
 /// for Monte Carlo Rendering"): the weight of a sample drawn by the strategy of density f_pdf (times
 /// its sample count nf) against the strategy of density g_pdf (times ng).

@@ -49,11 +49,8 @@ LightSample DirectionalLight::sample_li(Vec3, Vec2) const {
 
 LightLeSample DirectionalLight::sample_le(Vec2 u_pos, Vec2, float time) const {
   // A point of the disc tangent to the bounding sphere on the side the light comes from.
-  const Vec2 d = sample_concentric_disk(u_pos);
-  Vec3 t, b;
-  orthonormal_basis(direction_, t, b);
   LightLeSample s;
-  s.ray.o = center_ + (-direction_ + t * d.x + b * d.y) * radius_;
+  s.ray.o = sample_disc_origin(center_, radius_, -direction_, u_pos);
   s.ray.d = direction_;
   s.ray.time = time;
   s.l = irradiance_;

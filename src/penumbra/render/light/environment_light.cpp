@@ -213,11 +213,7 @@ LightLeSample EnvironmentLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) co
   const Vec2 uv = uv_of(to_map(w));
   s.pdf_dir = pdf_of(pixel_of(uv));
   if (!(s.pdf_dir > 0.0f)) return s;
-  // Origin on the disc of the bounding sphere that faces w, one radius out.
-  const Vec2 d = sample_concentric_disk(u_pos);
-  Vec3 t, b;
-  orthonormal_basis(w, t, b);
-  s.ray.o = center_ + (w + t * d.x + b * d.y) * radius_;
+  s.ray.o = sample_disc_origin(center_, radius_, w, u_pos);
   s.ray.d = -w;
   s.ray.time = time;
   s.l = lookup(uv);

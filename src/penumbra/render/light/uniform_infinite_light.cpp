@@ -42,10 +42,7 @@ Rgb UniformInfiniteLight::le(const Ray&) const { return radiance_; }
 LightLeSample UniformInfiniteLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) const {
   LightLeSample s;
   const Vec3 w = sample_uniform_sphere(u_dir);  // the direction light arrives from
-  const Vec2 d = sample_concentric_disk(u_pos);
-  Vec3 t, b;
-  orthonormal_basis(w, t, b);
-  s.ray.o = center_ + (w + t * d.x + b * d.y) * radius_;
+  s.ray.o = sample_disc_origin(center_, radius_, w, u_pos);
   s.ray.d = -w;
   s.ray.time = time;
   s.l = radiance_;
