@@ -23,8 +23,8 @@ constexpr uint32_t sobol_dim0(uint32_t i) { return reverse_bits(i); }
 /// aligned block of 2^k points is stratified in every elementary interval of area 2^-k.
 constexpr uint32_t sobol_dim1(uint32_t i) {
   uint32_t r = 0;
-  for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
-    if (i & 1u) r ^= v;
+  // Branch-free: the bits of i are as unpredictable as the sample indices.
+  for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1) r ^= v & (0u - (i & 1u));
   return r;
 }
 
