@@ -16,7 +16,8 @@ namespace penumbra {
 namespace {
 
 /// A small lit scene: a diffuse floor and sphere under a quad light and a dim sky.
-std::string scene_json(const std::string& sampler, int spp, const std::string& integrator = "path") {
+std::string scene_json(const std::string& sampler, int spp,
+                       const std::string& integrator = "path") {
   return fmt::format(R"({{
     "camera": {{"type": "pinhole", "position": [0, 1, -3], "look_at": [0, 0.3, 0], "vfov": 50}},
     "render": {{"resolution": [20, 14], "spp": {}, "seed": 4, "sampler": "{}",
@@ -188,7 +189,8 @@ TEST(RenderLoop, VarianceEstimateMatchesTheSpreadAcrossSeeds) {
   for (int y = 0; y < 14; ++y)
     for (int x = 0; x < 20; ++x) {
       double m = 0, m2 = 0;
-      for (const RgbImage& img : means) m += img.at(x, y).g, m2 += double(img.at(x, y).g) * img.at(x, y).g;
+      for (const RgbImage& img : means)
+        m += img.at(x, y).g, m2 += double(img.at(x, y).g) * img.at(x, y).g;
       m /= kRuns;
       empirical += (m2 - kRuns * m * m) / (kRuns - 1);
     }

@@ -6,8 +6,8 @@
 #include <mutex>
 #include <tuple>
 
-#include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <CLI/CLI.hpp>
 
 #include "penumbra/accel/registry.h"
 #include "penumbra/app/progress.h"
@@ -25,7 +25,9 @@ namespace {
 
 std::atomic<bool> g_interrupted{false};
 
-extern "C" void on_interrupt(int) { g_interrupted.store(true); }
+extern "C" void on_interrupt(int) {
+  g_interrupted.store(true);
+}
 
 /// Installs the interrupt handler for SIGINT and SIGTERM while alive.
 class InterruptGuard {
@@ -59,11 +61,15 @@ std::pair<int, int> parse_resolution(const std::string& text) {
 
 const char* stop_text(StopReason r) {
   switch (r) {
-    case StopReason::kTimeLimit: return "time limit";
-    case StopReason::kTargetError: return "error target";
-    case StopReason::kCancelled: return "interrupted";
+    case StopReason::kTimeLimit:
+      return "time limit";
+    case StopReason::kTargetError:
+      return "error target";
+    case StopReason::kCancelled:
+      return "interrupted";
     case StopReason::kComplete:
-    default: return "complete";
+    default:
+      return "complete";
   }
 }
 
@@ -75,8 +81,9 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("scene", args->scene, "Scene file (JSON; see docs/scene-format.md)")->required();
   cmd->add_option("-o,--output", args->output, "Output image: .png (8-bit sRGB), .exr or .pfm")
       ->required();
-  cmd->add_option("--spp", args->spp, "Samples per pixel (overrides the scene; the most a time- "
-                                      "or error-limited render takes)")
+  cmd->add_option("--spp", args->spp,
+                  "Samples per pixel (overrides the scene; the most a time- "
+                  "or error-limited render takes)")
       ->check(CLI::Range(1, 1 << 24));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
@@ -139,10 +146,17 @@ int run_render(const RenderArgs& args) {
                "{}: {} primitives, {} lights, {} {}x{} at {} spp ({}, {} filter), {} threads, "
                "accel {} built in {}\n",
                args.scene, job.world->primitives().size(), job.world->lights().size(),
-               job.integrator->name(), settings.width, settings.height, settings.spp, settings.sampler,
-               job.filter->name(), thread_count(), job.world->accelerator().name(),
-               format_duration(accel.build_ms * 1e-3));
+               job.integrator->name(), settings.width, settings.height, settings.spp,
+               settings.sampler, job.filter->name(), thread_count(),
+               job.world->accelerator().name(), format_duration(accel.build_ms * 1e-3));
 
+  if (!args.quiet && (args.time_limit || args.target_error) && settings.sampler != "independent" &&
+      settings.sampler != "random")
+    fmt::print(stderr,
+               "note: sampler {} places its samples for {} spp; a render stopped early by time or "
+               "error keeps a prefix of them (unbiased, less evenly spread). --sampler independent "
+               "is progressive.\n",
+               settings.sampler, settings.spp);
   RenderOptions& options = job.options;
   options.cancel = &g_interrupted;
   options.time_limit_s = args.time_limit.value_or(0.0);
@@ -172,18 +186,20 @@ int run_render(const RenderArgs& args) {
   write_image(job.film->resolve(), args.output);
   if (args.variance) write_image(job.film->variance(), *args.variance);
   if (!stats.complete()) {
-    fmt::print(stderr, "interrupted: wrote {} spp to {} ({} of {} tiles also finished the next pass)\n",
+    fmt::print(stderr,
+               "interrupted: wrote {} spp to {} ({} of {} tiles also finished the next pass)\n",
                stats.spp_done, args.output, stats.tiles_done, stats.tiles_total);
     return 130;
   }
   if (!args.quiet) {
     const double secs = stats.seconds > 0 ? stats.seconds : 1e-9;
-    const double samples = double(settings.width) * double(settings.height) * double(stats.spp_done);
+    const double samples =
+        double(settings.width) * double(settings.height) * double(stats.spp_done);
     fmt::print(stderr, "wrote {} ({} spp of {}, {}{})\n", args.output, stats.spp_done,
                stats.spp_target, stop_text(stats.stop),
-               stats.mean_rel_error >= 0 ? fmt::format(", mean relative error {:.4f}",
-                                                       stats.mean_rel_error)
-                                         : "");
+               stats.mean_rel_error >= 0
+                   ? fmt::format(", mean relative error {:.4f}", stats.mean_rel_error)
+                   : "");
     if (stats.preprocess_seconds > 0.01)
       fmt::print(stderr, "preprocess {}\n", format_duration(stats.preprocess_seconds));
     fmt::print(stderr,

@@ -37,11 +37,11 @@ class Film {
 
  private:
   struct Pixel {
-    double sum[3] = {0, 0, 0};     ///< sum w L
-    double weight = 0;             ///< sum w
-    double sum_w2 = 0;             ///< sum w^2
-    double sum_w2l[3] = {0, 0, 0};  ///< sum w^2 L
-    double sum_w2l2[3] = {0, 0, 0}; ///< sum w^2 L^2
+    double sum[3] = {0, 0, 0};       ///< sum w L
+    double weight = 0;               ///< sum w
+    double sum_w2 = 0;               ///< sum w^2
+    double sum_w2l[3] = {0, 0, 0};   ///< sum w^2 L
+    double sum_w2l2[3] = {0, 0, 0};  ///< sum w^2 L^2
     uint32_t count = 0;
   };
   const Pixel& pixel(int x, int y) const { return pixels_[size_t(y) * size_t(width_) + size_t(x)]; }

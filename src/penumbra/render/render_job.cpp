@@ -17,6 +17,8 @@ RenderJob::RenderJob(SceneDesc desc) : scene(std::move(desc)) {
   integrator = make_integrator(rs.integrator, *world, rs);
 }
 
-RenderStats RenderJob::run() { return integrator->render(*this); }
+RenderStats RenderJob::run() {
+  return integrator->render(*this);
+}
 
 }  // namespace penumbra

@@ -31,7 +31,9 @@ class RenderJob {
   /// Runs the integrator's render into `film`.
   RenderStats run();
   /// True once the options' cancel flag is set (integrators poll it in long steps).
-  bool cancelled() const { return options.cancel && options.cancel->load(std::memory_order_relaxed); }
+  bool cancelled() const {
+    return options.cancel && options.cancel->load(std::memory_order_relaxed);
+  }
   /// Reports preprocessing progress through options.on_preprocess, when set.
   void report_preprocess(const char* what, double fraction) const {
     if (options.on_preprocess) options.on_preprocess(what, fraction);

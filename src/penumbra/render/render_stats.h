@@ -11,11 +11,11 @@ class Film;
 
 /// Where a render stands, reported while it runs.
 struct RenderProgress {
-  int spp_done = 0;         ///< samples per pixel finished in every pixel
-  int spp_target = 0;       ///< samples per pixel asked for
-  double fraction = 0;      ///< of the samples asked for, done (counting the current pass's tiles)
-  double elapsed_s = 0;     ///< since the first pass started
-  uint64_t rays = 0;        ///< rays traced in finished tiles
+  int spp_done = 0;      ///< samples per pixel finished in every pixel
+  int spp_target = 0;    ///< samples per pixel asked for
+  double fraction = 0;   ///< of the samples asked for, done (counting the current pass's tiles)
+  double elapsed_s = 0;  ///< since the first pass started
+  uint64_t rays = 0;     ///< rays traced in finished tiles
   double mean_rel_error = -1;  ///< the image's mean relative standard error, when measured
 };
 
@@ -48,17 +48,17 @@ struct RenderOptions {
 /// What a render did.
 struct RenderStats {
   uint64_t camera_rays = 0;
-  uint64_t rays = 0;            ///< every ray traced: camera, secondary and shadow
-  double seconds = 0;           ///< the passes
+  uint64_t rays = 0;   ///< every ray traced: camera, secondary and shadow
+  double seconds = 0;  ///< the passes
   double preprocess_seconds = 0;
-  int spp_done = 0;             ///< samples per pixel that every pixel has
+  int spp_done = 0;  ///< samples per pixel that every pixel has
   int spp_target = 0;
   int passes = 0;
   size_t tiles_done = 0, tiles_total = 0;  ///< of the last pass (fewer when it was cancelled)
   StopReason stop = StopReason::kComplete;
   /// Of the worker threads' time in tiles, the share spent in ray traversal and intersection.
   double traversal_share = 0;
-  double mean_rel_error = -1;   ///< measured when a target error was set
+  double mean_rel_error = -1;  ///< measured when a target error was set
   /// True unless the render was cancelled (a time limit or an error target is a normal end).
   bool complete() const { return stop != StopReason::kCancelled; }
 };

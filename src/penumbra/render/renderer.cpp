@@ -55,7 +55,9 @@ void render_tile(RenderJob& job, const SamplingIntegrator& integrator, int x0, i
 
 }  // namespace
 
-RenderStats SamplingIntegrator::render(RenderJob& job) { return render_passes(job, *this); }
+RenderStats SamplingIntegrator::render(RenderJob& job) {
+  return render_passes(job, *this);
+}
 
 RenderStats render_passes(RenderJob& job, SamplingIntegrator& integrator) {
   RenderStats stats;
@@ -107,8 +109,8 @@ RenderStats render_passes(RenderJob& job, SamplingIntegrator& integrator) {
         RenderProgress p;
         p.spp_done = n == tiles ? first + count : first;
         p.spp_target = stats.spp_target;
-        p.fraction = (double(first) + double(count) * double(n) / double(tiles)) /
-                     double(stats.spp_target);
+        p.fraction =
+            (double(first) + double(count) * double(n) / double(tiles)) / double(stats.spp_target);
         p.elapsed_s = timer.elapsed_s();
         p.rays = totals.rays.load(std::memory_order_relaxed);
         p.mean_rel_error = stats.mean_rel_error;
@@ -144,12 +146,14 @@ RenderStats render_passes(RenderJob& job, SamplingIntegrator& integrator) {
       next = int(std::clamp(fit, 1.0, 2.0 * double(count)));
     }
   }
-  if (opt.target_error > 0 && stats.mean_rel_error < 0) stats.mean_rel_error = film.mean_relative_error();
+  if (opt.target_error > 0 && stats.mean_rel_error < 0)
+    stats.mean_rel_error = film.mean_relative_error();
 
   stats.camera_rays = uint64_t(film.width()) * uint64_t(film.height()) * uint64_t(stats.spp_done);
   stats.rays = totals.rays.load();
   const uint64_t tile_ticks = totals.tile_ticks.load();
-  stats.traversal_share = tile_ticks ? double(totals.traversal_ticks.load()) / double(tile_ticks) : 0;
+  stats.traversal_share =
+      tile_ticks ? double(totals.traversal_ticks.load()) / double(tile_ticks) : 0;
   stats.seconds = timer.elapsed_s();
   return stats;
 }

@@ -10,8 +10,8 @@
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
 #include "penumbra/render/light/area_light.h"
-#include "penumbra/render/light/uniform_infinite_light.h"
 #include "penumbra/render/light/light_registry.h"
+#include "penumbra/render/light/uniform_infinite_light.h"
 #include "penumbra/render/material/material_registry.h"
 
 namespace penumbra {
@@ -95,7 +95,8 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
     lights_.push_back(std::make_unique<AreaLight>(*this, e));
     shapes_[e.shape].area_light = lights_.back().get();
   }
-  if (!background_.is_black()) lights_.push_back(std::make_unique<UniformInfiniteLight>(background_));
+  if (!background_.is_black())
+    lights_.push_back(std::make_unique<UniformInfiniteLight>(background_));
   for (const auto& light : lights_) {
     light->preprocess(prims_.bounds());
     light_list_.push_back(light.get());

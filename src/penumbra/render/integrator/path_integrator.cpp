@@ -22,10 +22,13 @@ PathIntegrator::Strategy parse_strategy(const std::string& s) {
 
 const char* strategy_name(PathIntegrator::Strategy s) {
   switch (s) {
-    case PathIntegrator::Strategy::kNee: return "nee";
-    case PathIntegrator::Strategy::kBsdf: return "bsdf";
+    case PathIntegrator::Strategy::kNee:
+      return "nee";
+    case PathIntegrator::Strategy::kBsdf:
+      return "bsdf";
     case PathIntegrator::Strategy::kMis:
-    default: return "mis";
+    default:
+      return "mis";
   }
 }
 
@@ -44,7 +47,8 @@ PathIntegrator::PathIntegrator(const World& world, const ParamList& params, int 
       strategy_(parse_strategy(params.get_string("strategy", "mis"))),
       max_depth_(static_cast<int>(params.get_int("max_depth", max_depth, -1, 1 << 30))),
       rr_depth_(static_cast<int>(params.get_int("rr_depth", 3, 0, 1 << 30))),
-      light_sampler_(sampled_lights(world, strategy_), params.get_string("light_sampler", "power")) {
+      light_sampler_(sampled_lights(world, strategy_),
+                     params.get_string("light_sampler", "power")) {
   params.check_all_used();
 }
 
@@ -104,9 +108,9 @@ Rgb PathIntegrator::li(const Ray& camera_ray, Sampler& sampler, RayCounter& coun
     }
     // Emission of an area light the path hit.
     if (!si.emitted.is_black()) {
-      const float w = specular ? 1.0f
-                               : emission_weight(*si.area_light, bsdf_pdf, from, ray.d,
-                                                 si.light_point());
+      const float w =
+          specular ? 1.0f
+                   : emission_weight(*si.area_light, bsdf_pdf, from, ray.d, si.light_point());
       radiance += beta * si.emitted * w;
     }
     if (max_depth_ >= 0 && depth >= max_depth_) break;

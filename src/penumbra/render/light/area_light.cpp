@@ -138,12 +138,15 @@ AreaLight::AreaLight(const World& world, const Emitter& e)
     if (!(a > 0.0f) || !std::isfinite(a)) a = 0.0f;  // degenerate primitives emit nothing
     sum += a;
     areas_.push_back(a);
+    normals_.push_back(a > 0.0f && prims.kind(id) != PrimKind::kSphere
+                           ? normalize(world.area_normal(id))
+                           : Vec3{});
     rects_.push_back(rect);
     sums.push_back(sum);
   }
   area_ = float(sum);
   if (!(sum > 0.0)) {
-    areas_.clear(), rects_.clear();  // nothing to sample
+    areas_.clear(), rects_.clear(), normals_.clear();  // nothing to sample
     return;
   }
   // Exactly 1 from the last primitive of non-zero area on: degenerate ones never get a step.
@@ -178,13 +181,13 @@ void AreaLight::sample_area(uint32_t local, Vec2 u, Vec3& q, Vec3& n) const {
       const float s = std::sqrt(u.x);
       const float b1 = 1.0f - s, b2 = u.y * s;
       q = v[0] * (1.0f - b1 - b2) + v[1] * b1 + v[2] * b2;
-      n = normalize(world_.area_normal(id));
+      n = normals_[local];
       break;
     }
     case PrimKind::kQuad: {
       const QuadData& d = prims.quad(id);
       q = d.p + d.e1 * u.x + d.e2 * u.y;
-      n = normalize(world_.area_normal(id));
+      n = normals_[local];
       break;
     }
     case PrimKind::kSphere: {
@@ -254,7 +257,7 @@ LightSample AreaLight::sample_li(Vec3 p, Vec2 u) const {
     if (rect.solid_angle >= kMinSphericalSolidAngle &&
         rect.solid_angle <= kMaxSphericalSolidAngle) {
       q = rect.sample(v);
-      n = normalize(world_.area_normal(id));
+      n = normals_[local];
       pdf = float(1.0 / rect.solid_angle);
     }
   }

@@ -67,6 +67,7 @@ class AreaLight final : public Light {
   std::vector<float> pmf_;      ///< P(primitive) = difference of cdf_ (zero when degenerate)
   std::vector<float> areas_;    ///< area of each primitive
   std::vector<uint8_t> rects_;  ///< 1 for a rectangle (spherical-rectangle candidate)
+  std::vector<Vec3> normals_;   ///< unit front normal of each planar primitive (computed once)
   Rgb radiance_;
   bool two_sided_;
   float area_ = 0;

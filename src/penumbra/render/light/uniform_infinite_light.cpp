@@ -37,7 +37,9 @@ float UniformInfiniteLight::pdf_li(Vec3, Vec3, const LightPoint&) const {
   return 1.0f / (4.0f * kPi);
 }
 
-Rgb UniformInfiniteLight::le(const Ray&) const { return radiance_; }
+Rgb UniformInfiniteLight::le(const Ray&) const {
+  return radiance_;
+}
 
 LightLeSample UniformInfiniteLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) const {
   LightLeSample s;
