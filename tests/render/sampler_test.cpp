@@ -93,6 +93,32 @@ TEST(SobolSampler, EveryDimensionPairIsA0m2Net) {
     }
 }
 
+// Progressive: with spp = 2^m the first 2^k samples of a pixel (in index order, as passes take
+// them) are themselves a (0,k,2)-net in every 2D projection, for every k, because the nested
+// uniform shuffle maps indices [0, 2^k) onto an aligned block of 2^k points of the sequence.
+TEST(SobolSampler, EveryPowerOfTwoPrefixIsA0k2Net) {
+  const auto sampler = make_sampler("sobol", 256, 11);
+  for (int pixel = 0; pixel < 3; ++pixel)
+    for (int pair = 0; pair < 5; ++pair)
+      for (int m = 0; m <= 8; ++m) {
+        const int n = 1 << m;
+        std::vector<Vec2> pts;
+        for (int i = 0; i < n; ++i) {
+          sampler->start_pixel_sample(pixel, 1, i);
+          Vec2 p;
+          for (int d = 0; d <= pair; ++d) p = sampler->get_2d();
+          pts.push_back(p);
+        }
+        for (int k = 0; k <= m; ++k) {
+          const int bx = 1 << k, by = 1 << (m - k);
+          std::set<int> cells;
+          for (const Vec2& p : pts) cells.insert(int(p.x * bx) + bx * int(p.y * by));
+          EXPECT_EQ(cells.size(), size_t(n))
+              << "pixel " << pixel << " pair " << pair << " prefix " << n << " k " << k;
+        }
+      }
+}
+
 TEST(SamplerRegistry, UnknownNamesListTheValidOnes) {
   try {
     make_sampler("halton7", 4, 0);

@@ -150,13 +150,18 @@ int run_render(const RenderArgs& args) {
                settings.sampler, job.filter->name(), thread_count(),
                job.world->accelerator().name(), format_duration(accel.build_ms * 1e-3));
 
-  if (!args.quiet && (args.time_limit || args.target_error) && settings.sampler != "independent" &&
-      settings.sampler != "random")
-    fmt::print(stderr,
-               "note: sampler {} places its samples for {} spp; a render stopped early by time or "
-               "error keeps a prefix of them (unbiased, less evenly spread). --sampler independent "
-               "is progressive.\n",
-               settings.sampler, settings.spp);
+  // Sobol' with a power-of-two spp is progressive (every prefix of 2^k samples is a net);
+  // stratified samplers and other spp are not.
+  const bool power_of_two = (settings.spp & (settings.spp - 1)) == 0;
+  const bool progressive = settings.sampler == "independent" || settings.sampler == "random" ||
+                           (settings.sampler == "sobol" && power_of_two);
+  if (!args.quiet && (args.time_limit || args.target_error) && !progressive)
+    fmt::print(
+        stderr,
+        "note: sampler {} places its samples for {} spp; a render stopped early by time or "
+        "error keeps a prefix of them (unbiased, less evenly spread). --sampler independent, "
+        "or sobol with a power-of-two --spp, is progressive.\n",
+        settings.sampler, settings.spp);
   RenderOptions& options = job.options;
   options.cancel = &g_interrupted;
   options.time_limit_s = args.time_limit.value_or(0.0);
