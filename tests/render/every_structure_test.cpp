@@ -84,7 +84,9 @@ TEST(BundledScenes, PathTracesEveryBundledScene) {
       }
     EXPECT_TRUE(finite) << entry.path();
     // Some light, unless the scene has none (zone-plate.json is a texture seen in albedo mode).
-    if (!World(desc, "bvh").lights().empty()) EXPECT_GT(max, 0.0f) << entry.path();
+    if (!World(desc, "bvh").lights().empty()) {
+      EXPECT_GT(max, 0.0f) << entry.path();
+    }
     EXPECT_TRUE(test::render_desc(desc, 1) == img) << entry.path();
   }
 }
