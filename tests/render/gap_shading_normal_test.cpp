@@ -10,35 +10,14 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/core/dvec3.h"
 #include "render_helpers.h"
 
 namespace penumbra {
 namespace {
 
-/// Double-precision 3-vectors for the reference.
-struct D3 {
-  double x = 0, y = 0, z = 0;
-  D3() = default;
-  D3(double a, double b, double c) : x(a), y(b), z(c) {}
-  explicit D3(Vec3 v) : x(v.x), y(v.y), z(v.z) {}
-  D3 operator+(D3 b) const { return {x + b.x, y + b.y, z + b.z}; }
-  D3 operator-(D3 b) const { return {x - b.x, y - b.y, z - b.z}; }
-  D3 operator*(double s) const { return {x * s, y * s, z * s}; }
-  D3 operator-() const { return {-x, -y, -z}; }
-  Vec3 f() const { return {float(x), float(y), float(z)}; }
-};
-double dot(D3 a, D3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-D3 cross(D3 a, D3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double norm(D3 a) {
-  return std::sqrt(dot(a, a));
-}
-D3 unit(D3 a) {
-  return a * (1.0 / norm(a));
-}
+// Double-precision vectors for the reference (core/dvec3.h).
+using D3 = DVec3;
 double max_diff(D3 a, D3 b) {
   return std::max({std::fabs(a.x - b.x), std::fabs(a.y - b.y), std::fabs(a.z - b.z)});
 }
@@ -59,7 +38,7 @@ struct Affine {
 
 /// Rotation by `deg` about `axis` (Rodrigues) times the scale diag(s), then translated by t.
 Affine rotate_scale(double deg, D3 axis, D3 s, D3 t) {
-  const D3 k = unit(axis);
+  const D3 k = normalize(axis);
   const double a = deg * std::numbers::pi / 180, c = std::cos(a), sn = std::sin(a);
   const double r[3][3] = {
       {c + k.x * k.x * (1 - c), k.x * k.y * (1 - c) - k.z * sn, k.x * k.z * (1 - c) + k.y * sn},
@@ -86,8 +65,8 @@ std::string vec(D3 v) {
 /// from each other and from the faces' normals; uvs that are not the barycentrics.
 struct Mesh {
   D3 p[4] = {{0, 0, 0}, {2, 0, 0.3}, {0.2, 1.5, -0.2}, {2.1, 1.7, 0.2}};
-  D3 n[4] = {unit({0.3, -0.2, 1}), unit({-0.5, 0.1, 1}), unit({0.1, 0.6, 0.8}),
-             unit({0.4, 0.4, 1})};
+  D3 n[4] = {normalize(D3{0.3, -0.2, 1}), normalize(D3{-0.5, 0.1, 1}), normalize(D3{0.1, 0.6, 0.8}),
+             normalize(D3{0.4, 0.4, 1})};
   double uv[4][2] = {{0.1, 0.2}, {0.9, 0.05}, {0.3, 0.8}, {1.2, 1.1}};
   int tri[2][3] = {{0, 1, 2}, {1, 3, 2}};
 };
@@ -149,7 +128,7 @@ std::vector<Target> targets() {
 void check_mesh(Mesh m, bool flip, bool with_uvs, const Affine& to_world, const char* what) {
   if (flip)
     for (D3& n : m.n) n = -n;
-  const bool identity = to_world.det() == 1 && norm(to_world.t) == 0;
+  const bool identity = to_world.det() == 1 && length(to_world.t) == 0;
   const auto desc = test::scene_from_text(scene_json(m, with_uvs, identity ? nullptr : &to_world));
   const World world(desc, "bvh");
   // World-space vertices, and vertex normals by the inverse transpose, each normalised (World
@@ -157,21 +136,21 @@ void check_mesh(Mesh m, bool flip, bool with_uvs, const Affine& to_world, const 
   D3 pw[4], nw[4];
   for (int i = 0; i < 4; ++i) {
     pw[i] = to_world.point(m.p[i]);
-    nw[i] = unit(to_world.normal(m.n[i]));
+    nw[i] = normalize(to_world.normal(m.n[i]));
   }
   RayCounter counter;
   for (const Target& tg : targets()) {
     const int* v = m.tri[tg.tri];
     const double b0 = 1 - tg.b1 - tg.b2;
     const D3 x = pw[v[0]] * b0 + pw[v[1]] * tg.b1 + pw[v[2]] * tg.b2;
-    const D3 n = unit(nw[v[0]] * b0 + nw[v[1]] * tg.b1 + nw[v[2]] * tg.b2);
-    const D3 tangent = unit(pw[v[1]] - pw[v[0]]);
-    const D3 face = unit(cross(pw[v[1]] - pw[v[0]], pw[v[2]] - pw[v[0]]));
+    const D3 n = normalize(nw[v[0]] * b0 + nw[v[1]] * tg.b1 + nw[v[2]] * tg.b2);
+    const D3 tangent = normalize(pw[v[1]] - pw[v[0]]);
+    const D3 face = normalize(cross(pw[v[1]] - pw[v[0]], pw[v[2]] - pw[v[0]]));
     // Rays from both sides, slightly oblique.
     for (const double side : {1.0, -1.0}) {
       Ray ray;
-      ray.o = (x + face * (3 * side) + tangent * 0.2).f();
-      ray.d = unit(x - D3(ray.o)).f();
+      ray.o = (x + face * (3 * side) + tangent * 0.2).to_float();
+      ray.d = normalize(x - D3(ray.o)).to_float();
       SurfaceInteraction si;
       ASSERT_TRUE(world.intersect(ray, si, counter)) << what;
       const std::string at = std::string(what) + ", triangle " + std::to_string(tg.tri) +
@@ -185,7 +164,7 @@ void check_mesh(Mesh m, bool flip, bool with_uvs, const Affine& to_world, const 
       // The front side is the winding's, carried by the transform (flipped by a mirror); the
       // shading normal is turned to it.
       const int* w = m.tri[si.prim];
-      D3 ng = unit(cross(pw[w[1]] - pw[w[0]], pw[w[2]] - pw[w[0]]));
+      D3 ng = normalize(cross(pw[w[1]] - pw[w[0]], pw[w[2]] - pw[w[0]]));
       if (to_world.det() < 0) ng = -ng;
       const D3 ns = dot(n, ng) < 0 ? -n : n;
       EXPECT_LT(max_diff(D3(si.ng), ng), 4e-6) << at;
@@ -194,7 +173,7 @@ void check_mesh(Mesh m, bool flip, bool with_uvs, const Affine& to_world, const 
       // The shading frame is orthonormal around ns.
       EXPECT_NEAR(dot(D3(si.ss), D3(si.ns)), 0.0, 1e-5) << at;
       EXPECT_NEAR(dot(D3(si.ts), D3(si.ns)), 0.0, 1e-5) << at;
-      EXPECT_NEAR(norm(D3(si.ss)), 1.0, 1e-5) << at;
+      EXPECT_NEAR(length(D3(si.ss)), 1.0, 1e-5) << at;
       // Interpolated uvs, or without uvs the barycentrics (b1, b2) of the triangle hit.
       if (with_uvs) {
         const double u = m.uv[v[0]][0] * b0 + m.uv[v[1]][0] * tg.b1 + m.uv[v[2]][0] * tg.b2;

@@ -10,34 +10,15 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/core/dvec3.h"
 #include "penumbra/core/rng.h"
 #include "render_helpers.h"
 
 namespace penumbra {
 namespace {
 
-/// Double-precision 3-vectors for the reference geometry.
-struct D3 {
-  double x = 0, y = 0, z = 0;
-  D3() = default;
-  D3(double a, double b, double c) : x(a), y(b), z(c) {}
-  explicit D3(Vec3 v) : x(v.x), y(v.y), z(v.z) {}
-  D3 operator+(D3 b) const { return {x + b.x, y + b.y, z + b.z}; }
-  D3 operator-(D3 b) const { return {x - b.x, y - b.y, z - b.z}; }
-  D3 operator*(double s) const { return {x * s, y * s, z * s}; }
-};
-double dot(D3 a, D3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-D3 cross(D3 a, D3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-double norm(D3 a) {
-  return std::sqrt(dot(a, a));
-}
-D3 unit(D3 a) {
-  return a * (1.0 / norm(a));
-}
+// Double-precision vectors for the reference (core/dvec3.h).
+using D3 = DVec3;
 
 // An oblique camera on a wide film, so that no axis or aspect mistake cancels out.
 constexpr int kW = 160, kH = 90;
@@ -64,8 +45,8 @@ std::unique_ptr<Camera> pinhole() {
 /// The camera frame of the documented look-at convention: forward towards the target, image
 /// right = forward x up, image up completing the frame.
 struct Frame {
-  D3 forward = unit(kTarget - kEye);
-  D3 right = unit(cross(forward, kUp));
+  D3 forward = normalize(kTarget - kEye);
+  D3 right = normalize(cross(forward, kUp));
   D3 up = cross(right, forward);
 };
 
@@ -114,14 +95,14 @@ TEST(GapThinLens, EveryLensRayMeetsThePinholeRayOnThePlaneOfFocus) {
     const Ray p = pin->generate_ray({film, {0.5f, 0.5f}, 0});
     // The pinhole ray's point at camera depth focus_distance.
     const D3 focus = D3(p.o) + D3(p.d) * (kFocus / dot(D3(p.d), fr.forward));
-    ASSERT_LT(norm(D3(p.o) - kEye), 1e-6);
+    ASSERT_LT(length(D3(p.o) - kEye), 1e-6);
     for (const Vec2 u : lens_samples()) {
       const Ray r = cam->generate_ray({film, u, 0});
-      EXPECT_NEAR(norm(D3(r.d)), 1.0, 1e-6);
+      EXPECT_NEAR(length(D3(r.d)), 1.0, 1e-6);
       // Forward-going, so it reaches the plane in front of the lens.
       EXPECT_GT(dot(D3(r.d), fr.forward), 0.0);
       const D3 x = at_depth(r, kFocus);
-      EXPECT_LT(norm(x - focus), kPointTol)
+      EXPECT_LT(length(x - focus), kPointTol)
           << "film (" << film.x << ", " << film.y << "), lens (" << u.x << ", " << u.y << ")";
     }
   }
@@ -139,8 +120,8 @@ TEST(GapThinLens, LensSamplesFillTheApertureDiscUniformly) {
     for (const Vec2 u : lens_samples()) {
       const D3 l = D3(cam->generate_ray({film, u, 0}).o) - kEye;
       EXPECT_NEAR(dot(l, fr.forward), 0.0, 1e-6);
-      EXPECT_LE(norm(l), kAperture * (1 + 1e-5));
-      max_r = std::max(max_r, norm(l));
+      EXPECT_LE(length(l), kAperture * (1 + 1e-5));
+      max_r = std::max(max_r, length(l));
     }
   EXPECT_GT(max_r, kAperture * 0.999);
 
@@ -188,7 +169,7 @@ TEST(GapThinLens, DefocusSpreadsOverTheThinLensCircleOfConfusion) {
         const D3 l = D3(r.o) - kEye;
         // In world space: displaced by l (1 - z / focus) from the pinhole ray's point.
         const D3 expect = pz + l * (1 - z / kFocus);
-        EXPECT_LT(norm(at_depth(r, z) - expect), kPointTol * (1 + z / kFocus))
+        EXPECT_LT(length(at_depth(r, z) - expect), kPointTol * (1 + z / kFocus))
             << "z " << z << ", film (" << film.x << ", " << film.y << ")";
         // On the film: the displacement of the formula, in pixels.
         const auto [fx, fy] = film_of(at_depth(r, z));
@@ -214,8 +195,8 @@ TEST(GapThinLens, ZeroApertureIsThePinhole) {
   for (const Vec2 film : film_points())
     for (const Vec2 u : {Vec2{0.1f, 0.9f}, Vec2{0.7f, 0.3f}}) {
       const Ray r = cam->generate_ray({film, u, 0}), p = pin->generate_ray({film, u, 0});
-      EXPECT_LT(norm(D3(r.o) - D3(p.o)), 1e-6);
-      EXPECT_LT(norm(D3(r.d) - D3(p.d)), 1e-6);
+      EXPECT_LT(length(D3(r.o) - D3(p.o)), 1e-6);
+      EXPECT_LT(length(D3(r.d) - D3(p.d)), 1e-6);
     }
 }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "penumbra/core/dvec3.h"
 #include "penumbra/render/sampling.h"
 
 namespace penumbra {
@@ -13,46 +14,24 @@ namespace {
 constexpr float kPi = std::numbers::pi_v<float>;
 constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 
-/// A vector in double, for the spherical rectangle's setup (its solid angle is a difference of
-/// angles that sum to about 2 pi: float would leave too few digits at small solid angles).
-struct D3 {
-  double x, y, z;
-};
-D3 d3(Vec3 v) {
-  return {v.x, v.y, v.z};
-}
-D3 operator-(D3 a, D3 b) {
-  return {a.x - b.x, a.y - b.y, a.z - b.z};
-}
-D3 operator*(D3 a, double s) {
-  return {a.x * s, a.y * s, a.z * s};
-}
-double dot(D3 a, D3 b) {
-  return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-D3 cross(D3 a, D3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-D3 unit(D3 a) {
-  return a * (1.0 / std::sqrt(dot(a, a)));
-}
-
+// The spherical rectangle's set-up is in double: its solid angle is a difference of angles that
+// sum to about 2 pi, and float would leave too few digits at small solid angles.
 /// A rectangle o + s ex + t ey (s in [0, |e1|], t in [0, |e2|]) seen from a point, set up for
 /// uniform solid-angle sampling (Urena, Fajardo, King 2013, "An Area-Preserving Parametrization for
 /// Spherical Rectangles"). In the local frame (ex, ey, ez) centred at the receiver the rectangle
 /// spans [x0, x1] x [y0, y1] at height z0 < 0 (ez flipped as needed).
 struct SphericalRect {
-  SphericalRect(Vec3 p, const QuadData& q) : o(d3(p)) {
-    ex = unit(d3(q.e1));
-    const D3 e2 = d3(q.e2);
+  SphericalRect(Vec3 p, const QuadData& q) : o(DVec3(p)) {
+    ex = normalize(DVec3(q.e1));
+    const DVec3 e2 = DVec3(q.e2);
     ey = e2 - ex * dot(e2, ex);  // Gram-Schmidt: exact for a rectangle up to rounding
     const double eyl = std::sqrt(dot(ey, ey));
     ey = ey * (1.0 / eyl);
     ez = cross(ex, ey);
-    const D3 d = d3(q.p) - o;
+    const DVec3 d = DVec3(q.p) - o;
     x0 = dot(d, ex), y0 = dot(d, ey), z0 = dot(d, ez);
     if (z0 > 0) ez = ez * -1.0, z0 = -z0;
-    x1 = x0 + std::sqrt(dot(d3(q.e1), d3(q.e1))), y1 = y0 + eyl;
+    x1 = x0 + std::sqrt(dot(DVec3(q.e1), DVec3(q.e1))), y1 = y0 + eyl;
     if (!(z0 < 0)) return;  // in the rectangle's plane: no solid angle
     // Interior angles at the corners, as atan2(|sin|, cos) of the edge planes' normals, which
     // keeps full precision for angles near 0 and pi (where acos would not).
@@ -81,12 +60,13 @@ struct SphericalRect {
     const double h0 = y0 / std::sqrt(dd * dd + y0 * y0), h1 = y1 / std::sqrt(dd * dd + y1 * y1);
     const double hv = h0 + double(u.y) * (h1 - h0), hv2 = hv * hv;
     const double yv = hv2 < 1.0 - 1e-12 ? hv * dd / std::sqrt(1.0 - hv2) : y1;
-    const D3 q = {o.x + ex.x * xu + ey.x * yv + ez.x * z0, o.y + ex.y * xu + ey.y * yv + ez.y * z0,
-                  o.z + ex.z * xu + ey.z * yv + ez.z * z0};
+    const DVec3 q = {o.x + ex.x * xu + ey.x * yv + ez.x * z0,
+                     o.y + ex.y * xu + ey.y * yv + ez.y * z0,
+                     o.z + ex.z * xu + ey.z * yv + ez.z * z0};
     return {float(q.x), float(q.y), float(q.z)};
   }
 
-  D3 o, ex, ey, ez;
+  DVec3 o, ex, ey, ez;
   double x0 = 0, x1 = 0, y0 = 0, y1 = 0, z0 = 0, b0 = 0, b1 = 0, k = 0;
   double solid_angle = 0;
 };
