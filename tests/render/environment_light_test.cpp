@@ -12,7 +12,6 @@
 #include "penumbra/image/pfm.h"
 #include "penumbra/render/light/environment_light.h"
 #include "penumbra/render/light/light_registry.h"
-#include "penumbra/render/light/uniform_infinite_light.h"
 #include "penumbra/render/world.h"
 #include "penumbra/scene/scene_loader.h"
 
@@ -252,23 +251,30 @@ TEST(EnvironmentLight, ConstantMapHasUniformPdf) {
   }
 }
 
-// "environment" with only a radiance is the uniform infinite light.
-TEST(EnvironmentLight, WithoutAMapItIsTheUniformInfiniteLight) {
+// "environment" with only a radiance is a constant environment: Le = radiance from every
+// direction, density 1 / (4 pi), and power 4 pi * pi r^2 * L for the bounding sphere's radius r.
+TEST(EnvironmentLight, WithoutAMapItIsAConstantEnvironment) {
   const SceneParams params({{"type", "environment"}, {"radiance", {1, 2, 3}}}, "s.json",
                            "/lights/0");
   EnvironmentLight env(params);
-  UniformInfiniteLight uniform(Rgb(1, 2, 3));
   const Bounds3 b({-1, -2, 0}, {4, 1, 1});
-  env.preprocess(b), uniform.preprocess(b);
+  env.preprocess(b);
+  const double r = 0.5 * std::sqrt(5.0 * 5.0 + 3.0 * 3.0 + 1.0 * 1.0);
+  const float pdf = float(1.0 / (4.0 * std::numbers::pi));
   Pcg32 rng(2);
   for (int i = 0; i < 1000; ++i) {
     const Vec3 w =
         normalize(Vec3{rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f});
-    EXPECT_EQ(env.le(Ray{{}, w}), uniform.le(Ray{{}, w}));
-    EXPECT_NEAR(env.pdf_li({}, w, {}), uniform.pdf_li({}, w, {}), 1e-8f);
+    EXPECT_EQ(env.le(Ray{{}, w}), Rgb(1, 2, 3));
+    EXPECT_NEAR(env.pdf_li({}, w, {}), pdf, 1e-8f);
+    const LightSample ls = env.sample_li({}, {rng.next_float(), rng.next_float()});
+    EXPECT_NEAR(ls.pdf, pdf, 1e-8f);
+    EXPECT_EQ(ls.li, Rgb(1, 2, 3));
   }
-  for (int k = 0; k < 3; ++k)
-    EXPECT_NEAR(env.power()[k], uniform.power()[k], 1e-5f * uniform.power()[k]);
+  for (int k = 0; k < 3; ++k) {
+    const double power = 4.0 * std::numbers::pi * std::numbers::pi * r * r * double(k + 1);
+    EXPECT_NEAR(env.power()[k], power, 1e-5 * power);
+  }
 }
 
 // Expects a and b equal per channel within `tolerance`.

@@ -10,8 +10,8 @@
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
 #include "penumbra/render/light/area_light.h"
+#include "penumbra/render/light/environment_light.h"
 #include "penumbra/render/light/light_registry.h"
-#include "penumbra/render/light/uniform_infinite_light.h"
 #include "penumbra/render/material/material_registry.h"
 
 namespace penumbra {
@@ -96,7 +96,7 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
     shapes_[e.shape].area_light = lights_.back().get();
   }
   if (!background_.is_black())
-    lights_.push_back(std::make_unique<UniformInfiniteLight>(background_));
+    lights_.push_back(std::make_unique<EnvironmentLight>(RgbImage{}, background_));
   for (const auto& light : lights_) {
     light->preprocess(prims_.bounds());
     light_list_.push_back(light.get());
@@ -135,22 +135,33 @@ uint64_t tick_count() {
 #endif
 }
 
+namespace {
+/// One ray in kTimedEvery is timed and counts for kTimedEvery: reading the clock around every
+/// ray would cost a few percent of a cheap traversal itself. A prime stride does not fall in step
+/// with the rays of a path (camera, shadow, continuation, ...).
+constexpr uint64_t kTimedEvery = 17;
+}  // namespace
+
 bool World::intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const {
-  ++counter.rays;
   Hit hit;
-  const uint64_t t0 = tick_count();
-  const bool found = accel_->intersect(ray, hit);
-  counter.traversal_ticks += tick_count() - t0;
+  bool found;
+  if (++counter.rays % kTimedEvery == 0) {
+    const uint64_t t0 = tick_count();
+    found = accel_->intersect(ray, hit);
+    counter.traversal_ticks += (tick_count() - t0) * kTimedEvery;
+  } else {
+    found = accel_->intersect(ray, hit);
+  }
   if (!found) return false;
   interaction(ray, hit, si);
   return true;
 }
 
 bool World::occluded(const Ray& ray, RayCounter& counter) const {
-  ++counter.rays;
+  if (++counter.rays % kTimedEvery != 0) return accel_->occluded(ray);
   const uint64_t t0 = tick_count();
   const bool blocked = accel_->occluded(ray);
-  counter.traversal_ticks += tick_count() - t0;
+  counter.traversal_ticks += (tick_count() - t0) * kTimedEvery;
   return blocked;
 }
 

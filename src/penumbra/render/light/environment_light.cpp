@@ -90,6 +90,7 @@ EnvironmentLight::EnvironmentLight(const SceneParams& params) {
 
 void EnvironmentLight::build() {
   if (map_.empty()) map_ = RgbImage(1, 1, Rgb(1.0f));
+  constant_ = map_.width() == 1 && map_.height() == 1;
   const int w = map_.width(), h = map_.height();
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
@@ -200,10 +201,13 @@ LightSample EnvironmentLight::sample_li(Vec3, Vec2 u) const {
 }
 
 float EnvironmentLight::pdf_li(Vec3, Vec3 wi, const LightPoint&) const {
+  // A constant map: its one pixel, the whole sphere, without the direction's lookup.
+  if (constant_) return pdf_of({0, 0});
   return pdf_of(pixel_of(uv_of(to_map(wi))));
 }
 
 Rgb EnvironmentLight::le(const Ray& ray) const {
+  if (constant_) return scale_ * map_.at(0, 0);
   return lookup(uv_of(to_map(ray.d)));
 }
 

@@ -17,7 +17,8 @@ namespace penumbra {
 /// - radiance: RGB scale (a number s means (s, s, s)), default 1, finite and non-negative.
 /// - map: optional path of an equirectangular .exr or .pfm image (relative paths are resolved
 ///   against the scene file's folder by the scene loader). Without it the map is constant 1 and
-///   the light equals UniformInfiniteLight. Negative pixel values are read as 0; NaN or infinite
+///   the light is a constant environment (the scene's background is one): le and pdf_li then
+///   return the radiance and 1 / (4 pi) without a lookup. Negative pixel values are read as 0; NaN or infinite
 ///   pixels are an error.
 /// - transform: optional map-to-world rotation, in the syntax of shapes' "transform" (for example
 ///   [{"rotate": {"axis": [0, 1, 0], "angle": 90}}]); only rotations (and mirrorings) are
@@ -96,6 +97,7 @@ class EnvironmentLight final : public Light {
   std::vector<float> row_factor_;  ///< per row: 1 / (2 pi H (z_j - z_j+1)), to turn a density on
                                    ///< [0, 1)^2 into one per solid angle
   Rgb integral_;
+  bool constant_ = false;  ///< a 1 x 1 map: the same radiance from every direction
   Vec3 center_;
   float radius_ = 1;
 };
