@@ -22,6 +22,19 @@ void Film::add_sample(int x, int y, Rgb l, float weight) {
   ++p.count;
 }
 
+void Film::set_pixel(int x, int y, Rgb value, uint32_t samples) {
+  Pixel& p = pixels_[size_t(y) * size_t(width_) + size_t(x)];
+  p = Pixel{};
+  for (int c = 0; c < 3; ++c) {
+    p.sum[c] = value[c];
+    p.sum_w2l[c] = value[c];
+    p.sum_w2l2[c] = double(value[c]) * double(value[c]);
+  }
+  p.weight = 1.0;
+  p.sum_w2 = 1.0;
+  p.count = samples;
+}
+
 RgbImage Film::resolve() const {
   RgbImage image(width_, height_);
   for (int y = 0; y < height_; ++y)

@@ -1,6 +1,7 @@
 #pragma once
 /// The film: per-pixel weighted sums of radiance samples, resolved into an image, with the
 /// statistics of a per-pixel variance estimate.
+#include <cstdint>
 #include <vector>
 
 #include "penumbra/core/color.h"
@@ -24,6 +25,10 @@ class Film {
   int height() const { return height_; }
   /// Adds sample radiance `l` with `weight` to pixel (x, y).
   void add_sample(int x, int y, Rgb l, float weight = 1.0f);
+  /// Replaces pixel (x, y) by the estimate `value`, counted as `samples` samples (for
+  /// integrators whose pixel value is not a mean of samples, such as SPPM's); its variance reads
+  /// as zero.
+  void set_pixel(int x, int y, Rgb value, uint32_t samples);
   /// The image of weighted means; pixels without samples are black.
   RgbImage resolve() const;
   /// Per pixel and channel, the estimated variance of the pixel's mean (zero without samples).

@@ -21,4 +21,15 @@ RenderStats RenderJob::run() {
   return integrator->render(*this);
 }
 
+Ray RenderJob::camera_ray(Sampler& s, int x, int y, int index, float& filter_weight) const {
+  s.start_pixel_sample(x, y, index);
+  const FilterSample fs = filter_sampler->sample(s.get_pixel_2d());
+  CameraSample cs;
+  cs.film = {float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y};
+  cs.lens = s.get_2d();
+  cs.time = s.get_1d();
+  filter_weight = fs.weight;
+  return camera->generate_ray(cs);
+}
+
 }  // namespace penumbra

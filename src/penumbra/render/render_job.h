@@ -34,6 +34,10 @@ class RenderJob {
   bool cancelled() const {
     return options.cancel && options.cancel->load(std::memory_order_relaxed);
   }
+  /// Positions `s` at sample `index` of pixel (x, y) and draws the camera ray, with dimensions in
+  /// a fixed order (pixel offset, lens, time) before the integrator's; `filter_weight` receives
+  /// the reconstruction filter's weight of the sample.
+  Ray camera_ray(Sampler& s, int x, int y, int index, float& filter_weight) const;
   /// Reports preprocessing progress through options.on_preprocess, when set.
   void report_preprocess(const char* what, double fraction) const {
     if (options.on_preprocess) options.on_preprocess(what, fraction);

@@ -33,20 +33,12 @@ void render_tile(RenderJob& job, const SamplingIntegrator& integrator, int x0, i
   auto s = job.sampler->clone();
   RayCounter counter;
   Film& film = *job.film;
-  const Camera& camera = *job.camera;
-  const FilterSampler& filter = *job.filter_sampler;
   for (int y = y0; y < y1; ++y)
     for (int x = x0; x < x1; ++x)
       for (int i = first; i < first + count; ++i) {
-        // Dimensions in a fixed order: pixel offset, lens, time, then the integrator's.
-        s->start_pixel_sample(x, y, i);
-        CameraSample cs;
-        const FilterSample fs = filter.sample(s->get_pixel_2d());
-        cs.film = {float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y};
-        cs.lens = s->get_2d();
-        cs.time = s->get_1d();
-        const Ray ray = camera.generate_ray(cs);
-        film.add_sample(x, y, integrator.li(ray, *s, counter), fs.weight);
+        float weight = 0.0f;
+        const Ray ray = job.camera_ray(*s, x, y, i, weight);
+        film.add_sample(x, y, integrator.li(ray, *s, counter), weight);
       }
   totals.rays.fetch_add(counter.rays, std::memory_order_relaxed);
   totals.traversal_ticks.fetch_add(counter.traversal_ticks, std::memory_order_relaxed);

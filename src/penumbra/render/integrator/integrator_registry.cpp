@@ -6,7 +6,9 @@
 #include "penumbra/core/registry.h"
 #include "penumbra/render/integrator/distribution_integrator.h"
 #include "penumbra/render/integrator/path_integrator.h"
+#include "penumbra/render/integrator/photon_integrator.h"
 #include "penumbra/render/integrator/raycast_integrator.h"
+#include "penumbra/render/integrator/sppm_integrator.h"
 #include "penumbra/render/integrator/whitted_integrator.h"
 
 namespace penumbra {
@@ -36,6 +38,14 @@ const Registry<Factory>& registry() {
       {"path", "path tracing: the rendering equation, unbiased, with MIS (Kajiya 1986, Veach 1997)",
        [](const World& w, const ParamList& p, const RenderSettings& s) {
          return std::make_unique<PathIntegrator>(w, p, s.max_depth.value_or(-1));
+       }},
+      {"photon", "photon mapping: caustic and global maps, final gathering (Jensen 1996)",
+       [](const World& w, const ParamList& p, const RenderSettings& s) {
+         return std::make_unique<PhotonIntegrator>(w, p, s);
+       }},
+      {"sppm", "stochastic progressive photon mapping (Hachisuka, Jensen 2009)",
+       [](const World& w, const ParamList& p, const RenderSettings& s) {
+         return std::make_unique<SppmIntegrator>(w, p, s);
        }},
   };
   return all;
