@@ -90,7 +90,8 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--seed", args->seed, "Random seed (overrides the scene)");
   cmd->add_option("--accel", args->accel, "Acceleration structure NAME[:params] (see accel-bench)");
   cmd->add_option("--integrator", args->integrator,
-                  "Integrator NAME[:params]: raycast, whitted, distribution, path");
+                  "Integrator NAME[:params]: raycast, whitted, distribution, path, photon, "
+                  "sppm (docs/rendering.md, docs/photon-mapping.md)");
   cmd->add_option("--sampler", args->sampler,
                   "Pixel sampler: independent (random), regular, jittered, sobol");
   cmd->add_option("--filter", args->filter,
