@@ -9,16 +9,32 @@
 
 namespace penumbra {
 
+/// sin and cos of a in [-pi/4, pi/4] by their Taylor polynomials to a^9 and a^10: the first
+/// omitted terms are below 2e-9 there, so the results are within about an ulp of the true values
+/// (checked against libm in sampler_test), without the call to sincosf that cost a third of
+/// diffuse sampling.
+inline void sin_cos_quarter(float a, float& s, float& c) {
+  const float a2 = a * a;
+  s = a * (1.0f + a2 * (-1.0f / 6 + a2 * (1.0f / 120 + a2 * (-1.0f / 5040 + a2 * (1.0f / 362880)))));
+  c = 1.0f + a2 * (-0.5f + a2 * (1.0f / 24 + a2 * (-1.0f / 720 + a2 * (1.0f / 40320 +
+                                                                        a2 * (-1.0f / 3628800)))));
+}
+
 /// Concentric map of [0,1)^2 to the unit disk (Shirley, Chiu 1997, "A Low Distortion Map Between
 /// Disk and Square").
 inline Vec2 sample_concentric_disk(Vec2 u) {
   const float ox = 2.0f * u.x - 1.0f, oy = 2.0f * u.y - 1.0f;
   if (ox == 0.0f && oy == 0.0f) return {0, 0};
   constexpr float kPi4 = std::numbers::pi_v<float> / 4.0f;
-  float r, theta;
-  if (std::fabs(ox) > std::fabs(oy)) r = ox, theta = kPi4 * (oy / ox);
-  else r = oy, theta = 2.0f * kPi4 - kPi4 * (ox / oy);
-  return {r * std::cos(theta), r * std::sin(theta)};
+  // The angle is pi/4 (oy / ox), or pi/2 - pi/4 (ox / oy) with sine and cosine swapped, so only
+  // angles in [-pi/4, pi/4] are evaluated.
+  float s, c;
+  if (std::fabs(ox) > std::fabs(oy)) {
+    sin_cos_quarter(kPi4 * (oy / ox), s, c);
+    return {ox * c, ox * s};
+  }
+  sin_cos_quarter(kPi4 * (ox / oy), s, c);
+  return {oy * s, oy * c};
 }
 
 /// Cosine-weighted direction on the +z hemisphere (Malley's method); pdf = cos(theta) / pi.

@@ -28,6 +28,20 @@ constexpr uint32_t sobol_dim1(uint32_t i) {
   return r;
 }
 
+/// reverse_bits(sobol_dim1(i)) in a few operations and without a loop. The second dimension's
+/// generator matrix is Pascal's triangle mod 2: bit k of i contributes to fraction digit p (bit
+/// 31 - p) when C(k, p) is odd, which by Lucas' theorem is when p's bits are a subset of k's. So
+/// digit p is the XOR of the bits k of i over the supersets k of p: the superset-XOR (binary
+/// Moebius) transform of i over the five bits of a position, one masked shift per bit.
+constexpr uint32_t sobol_dim1_reversed(uint32_t i) {
+  i ^= (i >> 1) & 0x55555555u;
+  i ^= (i >> 2) & 0x33333333u;
+  i ^= (i >> 4) & 0x0f0f0f0fu;
+  i ^= (i >> 8) & 0x00ff00ffu;
+  i ^= (i >> 16) & 0x0000ffffu;
+  return i;
+}
+
 /// The hash-based nested uniform (Owen) scramble of a 32-bit fraction (Burley 2020, "Practical
 /// Hash-based Owen Scrambling", JCGT 9(4)): the Laine-Karras permutation applied to the
 /// bit-reversed value, so each bit is flipped depending only on the bits above it.
@@ -46,6 +60,11 @@ constexpr uint32_t owen_scramble(uint32_t v, uint32_t seed) {
 /// owen_scramble(sobol_dim0(i), seed) without its two cancelling bit reversals.
 constexpr uint32_t owen_scrambled_dim0(uint32_t i, uint32_t seed) {
   return reverse_bits(laine_karras_permutation(i, seed));
+}
+
+/// owen_scramble(sobol_dim1(i), seed) without its two cancelling bit reversals.
+constexpr uint32_t owen_scrambled_dim1(uint32_t i, uint32_t seed) {
+  return reverse_bits(laine_karras_permutation(sobol_dim1_reversed(i), seed));
 }
 
 /// Element i of a pseudo-random permutation of [0, n) chosen by `seed`, without tables
