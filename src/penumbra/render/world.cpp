@@ -178,8 +178,11 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
   // The primitive's geometry at the ray's time (its only geometry when it is static).
   switch (prims_.kind(id)) {
     case PrimKind::kTriangle: {
-      Vec3 p[3];
-      prims_.triangle_at(id, ray.time, p);
+      // A static triangle's vertices are read in place: copying them through triangle_at's
+      // out-parameter cost a store-to-load forwarding stall per hit.
+      Vec3 moved[3];
+      const Vec3* p = prims_.triangle(id);
+      if (prims_.moving(id)) prims_.triangle_at(id, ray.time, moved), p = moved;
       const float b0 = 1.0f - hit.u - hit.v;
       si.p = p[0] * b0 + p[1] * hit.u + p[2] * hit.v;
       // Error of a barycentric combination (pbrt-v3 section 3.9.4).
