@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <typeinfo>
 
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
 #include "penumbra/render/material/material.h"
+#include "penumbra/render/sampler/sobol_sampler.h"
 #include "penumbra/render/sampling.h"
 
 namespace penumbra {
@@ -68,13 +70,16 @@ float PathIntegrator::emission_weight(const Light& light, float bsdf_pdf, Vec3 f
   return power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
 }
 
+template <class S>
 Rgb PathIntegrator::sample_light(const SurfaceInteraction& si, const Material& m, Vec3 wo,
-                                 float time, Sampler& sampler, RayCounter& counter) const {
-  // The sample values are drawn whether or not they are used, so that every vertex takes the
-  // same dimensions.
-  const float u_light = sampler.get_1d();
-  const Vec2 u = sampler.get_2d();
-  const SampledLight picked = light_sampler_.sample(u_light);
+                                 float time, S& sampler, RayCounter& counter) const {
+  // One pair: the light from its first number, whose unused part, stretched back to [0, 1),
+  // then places the sample on that light (as Mitsuba 3's sample_emitter_direction reuses it):
+  // a dimension less per vertex, and the pair stays stratified over lights and points together.
+  // The values are drawn whether or not they are used, so that every vertex takes the same
+  // dimensions.
+  Vec2 u = sampler.get_2d();
+  const SampledLight picked = light_sampler_.sample(u.x, &u.x);
   if (!picked.light || !(picked.pmf > 0.0f)) return {};
   const LightSample ls = picked.light->sample_li(si.p, u);
   if (ls.li.is_black() || !(ls.pdf > 0.0f)) return {};
@@ -87,7 +92,15 @@ Rgb PathIntegrator::sample_light(const SurfaceInteraction& si, const Material& m
   return f * ls.li * (power_heuristic(1.0f, light_pdf, 1.0f, m.pdf(wo, wi)) / light_pdf);
 }
 
-Rgb PathIntegrator::li(const Ray& camera_ray, Sampler& sampler, RayCounter& counter) const {
+Rgb PathIntegrator::li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
+  // One type test per camera sample buys inlined sampler calls for the rest of the path.
+  if (typeid(sampler) == typeid(SobolSampler))
+    return trace(ray, static_cast<SobolSampler&>(sampler), counter);
+  return trace(ray, sampler, counter);
+}
+
+template <class S>
+Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter) const {
   Rgb radiance, beta(1.0f);
   Ray ray = camera_ray;
   bool specular = true;   // the last bounce was specular (or there was none): emission counts fully
