@@ -35,6 +35,9 @@ SCENES = {
 }
 
 
+REF_SEED = 1000003
+
+
 def read_pfm(path):
     with open(path, "rb") as f:
         assert f.readline().strip() == b"PF"
@@ -44,9 +47,11 @@ def read_pfm(path):
     return data.reshape(h, w, 3)[::-1]  # PFM rows run bottom to top
 
 
-def render(args, scene, integrator, out, spp, time_limit=None):
+def render(args, scene, integrator, out, spp, time_limit=None, seed=None):
     cmd = [args.penumbra, "render", scene["file"], "--integrator", integrator, "--spp", str(spp),
            "--resolution", "%dx%d" % scene["res"], "--threads", str(args.threads), "-o", out]
+    if seed is not None:
+        cmd += ["--seed", str(seed)]
     if time_limit:
         cmd += ["--time-limit", str(time_limit)]
     start = time.monotonic()
@@ -96,10 +101,13 @@ def main():
     scene = SCENES[args.scene]
     os.makedirs(args.work, exist_ok=True)
     ref_spp = args.ref_spp or scene["ref_spp"]
-    ref_path = os.path.join(args.work, "ref-%s-%dx%d-%d.pfm" % (args.scene, *scene["res"], ref_spp))
+    ref_path = os.path.join(args.work, "ref-%s-%dx%d-%d-seed%d.pfm"
+                            % (args.scene, *scene["res"], ref_spp, REF_SEED))
     if not os.path.exists(ref_path):
         print("reference: path at %d spp ..." % ref_spp, flush=True)
-        wall, _ = render(args, scene, "path", ref_path, ref_spp)
+        # Its own seed: renders with the scene's seed share their first samples with it, and
+        # their error against it would read low.
+        wall, _ = render(args, scene, "path", ref_path, ref_spp, seed=REF_SEED)
         print("reference took %.1f s" % wall, flush=True)
     ref = read_pfm(ref_path)
     times = [float(t) for t in args.times.split(",")]
@@ -114,10 +122,17 @@ def main():
             out = os.path.join(args.work, "%s-%s-%g.pfm" % (args.scene, name, t))
             wall, spp = render(args, scene, spec, out, 1 << 24, t)
             img = read_pfm(out)
-            rows.append((wall, rel_rmse(img, ref), rel_rmse(img, ref, scene["roi"])))
+            rows.append((wall, rel_rmse(img, ref), rel_rmse(img, ref, scene["roi"]), spp))
             print("| %s | %g | %.2f | %d | %.4f | %.4f |" % (spec, t, wall, spp, rows[-1][1],
                                                             rows[-1][2]), flush=True)
         results[spec] = rows
+    # The reference's own error, from path's largest budget scaled by the spp: independent of the
+    # renders (its own seed), so its square adds to every row's squared error.
+    if "path" in results:
+        _, roi_err, spp = results["path"][-1][2], results["path"][-1][2], results["path"][-1][3]
+        print("\nthe reference's own relative RMSE on the %s: about %.4f (path's at %d spp x "
+              "sqrt(%d / %d))" % (scene["roi_name"], roi_err * math.sqrt(spp / ref_spp), spp,
+                                 spp, ref_spp))
     target = args.target
     if target is None:  # the error path reaches on the region with the largest budget
         target = results.get("path", next(iter(results.values())))[-1][2]

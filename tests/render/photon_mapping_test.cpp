@@ -141,6 +141,34 @@ TEST(PhotonMappingDeterminism, SameBitsAtAnyThreadCount) {
   }
 }
 
+// An open scene with a thin lens (scenes/depth-of-field.json: spheres on a 40 x 40 floor): each
+// pixel's initial radius follows its own footprint, so the blur is a couple of pixels everywhere
+// and every 8 x 8 block of sppm matches path within 6% (with one radius from the scene's size,
+// 1.8 units against spheres of radius 0.5, the spheres' blocks read 25-28% dark).
+TEST(SppmCameraEffects, OpenSceneWithThinLensMatchesPathBlockByBlock) {
+  auto desc = test::bundled_scene("depth-of-field.json");
+  desc.render.width = 64;
+  desc.render.height = 48;
+  desc.render.max_depth.reset();
+  desc.render.spp = 1024;
+  desc.render.integrator = "path";
+  const RgbImage path = test::render_desc(desc);
+  desc.render.spp = 256;
+  desc.render.integrator = "sppm:photons=50000";
+  const RgbImage sppm = test::render_desc(desc);
+  int blocks = 0;
+  for (int by = 0; by < 48; by += 8)
+    for (int bx = 0; bx < 64; bx += 8) {
+      const float a = region_mean(sppm, bx, by, bx + 8, by + 8).g;
+      const float b = region_mean(path, bx, by, bx + 8, by + 8).g;
+      if (b < 0.01f) continue;
+      ++blocks;
+      EXPECT_LE(std::fabs(a / b - 1.0f), 0.06f) << "block " << bx << "," << by << ": " << a
+                                                << " vs path " << b;
+    }
+  EXPECT_GE(blocks, 24);
+}
+
 /// The bundled caustic scene at 64 x 48.
 RgbImage caustic_scene(const std::string& integrator, int spp) {
   auto desc = test::bundled_scene("caustic.json");

@@ -28,6 +28,20 @@ constexpr uint64_t kChunk = 4096;
 constexpr float kSurfaceCos = 0.5f;
 /// Camera paths that never reach a diffuse point end here when max_depth is unbounded.
 constexpr int kMaxCameraDepth = 64;
+/// The default initial radius, in pixel footprints at the visible point's distance.
+constexpr float kFootprints = 2.0f;
+
+/// The angle between the camera rays through the centres of pixel (x, y) and its neighbour:
+/// the angular size of the pixel.
+float pixel_angle(const RenderJob& job, int x, int y) {
+  CameraSample a, b;
+  a.film = {float(x) + 0.5f, float(y) + 0.5f};
+  b.film = {float(x) + (x + 1 < job.film->width() ? 1.5f : -0.5f), float(y) + 0.5f};
+  a.lens = b.lens = {0.5f, 0.5f};
+  const Vec3 da = normalize(job.camera->generate_ray(a).d);
+  const Vec3 db = normalize(job.camera->generate_ray(b).d);
+  return 2.0f * std::asin(std::min(1.0f, 0.5f * penumbra::length(da - db)));
+}
 
 }  // namespace
 
@@ -42,15 +56,12 @@ SppmIntegrator::SppmIntegrator(const World& world, const ParamList& params,
       seed_(settings.seed),
       light_sampler_(world.lights(), "power") {
   params.check_all_used();
-  if (initial_radius_ == 0.0f) {
-    const float diag = length(world.bounds().diagonal());
-    const int size = std::max(settings.width, settings.height);
-    initial_radius_ = std::isfinite(diag) && diag > 0.0f ? 2.0f * diag / float(size) : 1.0f;
-  }
 }
 
 std::string SppmIntegrator::name() const {
-  std::string s = fmt::format("sppm:radius={:g},alpha={:g}", initial_radius_, alpha_);
+  std::string s = initial_radius_ > 0.0f
+                      ? fmt::format("sppm:radius={:g},alpha={:g}", initial_radius_, alpha_)
+                      : fmt::format("sppm:alpha={:g}", alpha_);
   if (photons_per_pass_ > 0) s += fmt::format(",photons={}", photons_per_pass_);
   if (max_depth_ >= 0) s += fmt::format(",max_depth={}", max_depth_);
   if (rr_depth_ != 3) s += fmt::format(",rr_depth={}", rr_depth_);
@@ -62,6 +73,7 @@ void SppmIntegrator::camera_path(RenderJob& job, Sampler& sampler, int x, int y,
   float weight = 0.0f;
   Ray ray = job.camera_ray(sampler, x, y, pass, weight);
   Rgb beta(weight), ld;
+  float length = 0.0f;   // of the path so far, for the initial radius
   bool specular = true;  // emission counts only where no shadow ray could have found it
   const int limit = max_depth_ >= 0 ? max_depth_ : kMaxCameraDepth;
   px.has_vp = false;
@@ -72,6 +84,7 @@ void SppmIntegrator::camera_path(RenderJob& job, Sampler& sampler, int x, int y,
       break;
     }
     if (specular) ld += beta * si.emitted;
+    length += si.t * std::sqrt(dot(ray.d, ray.d));
     MaterialScratch scratch;
     const Material& m = si.material->at(si, scratch);
     const Vec3 wo = si.to_local(si.wo);
@@ -83,6 +96,11 @@ void SppmIntegrator::camera_path(RenderJob& job, Sampler& sampler, int x, int y,
           px.vp = si;
           px.beta = beta;
           px.has_vp = true;
+          // The first visible point sets the radius: kFootprints pixel footprints at the
+          // distance the path travelled, so the blur is about the same on screen everywhere.
+          if (px.radius == 0.0f)
+            px.radius = initial_radius_ > 0.0f ? initial_radius_
+                                               : kFootprints * length * pixel_angle(job, x, y);
         }
         break;
       }
@@ -180,7 +198,8 @@ void SppmIntegrator::update_pixels(RenderJob& job, int passes_done) {
           const double area = std::numbers::pi * double(px.radius) * double(px.radius);
           Rgb l;
           for (int c = 0; c < 3; ++c)
-            l[c] = float(px.ld[c] / passes_done + (np > 0 ? px.tau[c] / (np * area) : 0.0));
+            l[c] = float(px.ld[c] / passes_done +
+                         (np > 0 && area > 0 ? px.tau[c] / (np * area) : 0.0));
           film.set_pixel(int(i % size_t(width_)), int(i / size_t(width_)), l,
                          uint32_t(passes_done));
         }
@@ -199,7 +218,6 @@ RenderStats SppmIntegrator::render(RenderJob& job) {
   width_ = film.width();
   stats.spp_target = job.sampler->samples_per_pixel();
   pixels_.assign(size_t(film.width()) * size_t(film.height()), Pixel{});
-  for (Pixel& px : pixels_) px.radius = initial_radius_;
   photons_emitted_ = 0;
 
   const int ts = std::max(1, opt.tile_size);

@@ -26,7 +26,7 @@ namespace penumbra {
 /// point and its statistics per pixel, and one pass's photon deposits.
 ///
 /// Parameters (defaults in brackets): photons [the number of pixels] per pass, radius [2 pixel
-/// footprints at the scene's size: 2 x diagonal / max(width, height)] the initial radius,
+/// footprints at the distance of each pixel's first visible point] the initial radius,
 /// alpha [2/3], max_depth [the scene's, else unbounded with Russian roulette] bounces of camera
 /// and photon paths, rr_depth [3]. --spp sets the number of passes.
 class SppmIntegrator final : public Integrator {
@@ -41,7 +41,7 @@ class SppmIntegrator final : public Integrator {
     double ld[3] = {0, 0, 0};   ///< sum over passes of direct and seen emission
     double tau[3] = {0, 0, 0};  ///< flux, rescaled to the current radius
     double n = 0;               ///< accumulated photon count N
-    float radius = 0;
+    float radius = 0;  ///< 0 until the pixel's first visible point sets it
     // This pass's visible point, when the camera path found one.
     bool has_vp = false;
     SurfaceInteraction vp;      ///< the point (its material is resolved again per photon)
@@ -65,7 +65,7 @@ class SppmIntegrator final : public Integrator {
 
   const World& world_;
   uint64_t photons_per_pass_;  ///< 0: the number of pixels
-  float initial_radius_;       ///< 0: from the scene's size and the image's
+  float initial_radius_;       ///< 0: from each pixel's footprint
   float alpha_;
   int max_depth_;  ///< -1: unbounded
   int rr_depth_;
