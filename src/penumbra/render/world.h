@@ -64,6 +64,13 @@ class World {
   const Light& area_light(size_t emitter) const { return *lights_[first_area_light_ + emitter]; }
   /// The emissive shapes.
   const std::vector<Emitter>& emitters() const { return emitters_; }
+  /// Per shape (PrimOrigin::shape of its primitives), for integrators that mesh the scene
+  /// (radiosity): its material, its emitted radiance (on the front side, the side area_normal
+  /// points to, or both sides when two-sided) when emissive.
+  size_t shape_count() const { return shapes_.size(); }
+  const Material& shape_material(uint32_t shape) const { return *shapes_[shape].material; }
+  const std::optional<Rgb>& shape_emission(uint32_t shape) const { return shapes_[shape].emission; }
+  bool shape_emits_both_sides(uint32_t shape) const { return shapes_[shape].two_sided; }
   /// The scene's background radiance (also an infinite light when not black).
   Rgb background() const { return background_; }
   /// Bounds of the scene's geometry.
