@@ -69,6 +69,38 @@ TEST(RadiosityMesh, ElementCountsFollowThePatchSize) {
   EXPECT_NE(b.warnings[0].find("shape 2"), std::string::npos) << b.warnings[0];
 }
 
+// A rectangle written as two triangles (as the Cornell box's walls are) is meshed as one
+// parallelogram grid: 2 x 1 at patch 0.5 gives 4 x 2 pieces, not 2 x s^2 = 2 x 9 triangles, and
+// hits on either triangle locate in it. Two triangles that do not complete a parallelogram (a
+// kite) keep their own subdivisions.
+TEST(RadiosityMesh, TrianglePairsFormingAParallelogramAreOneGrid) {
+  const auto scene = [](const char* positions) {
+    return fmt::format(R"({{
+      "camera": {{"type": "pinhole", "position": [0, 0, -5], "look_at": [0, 0, 0], "vfov": 40}},
+      "render": {{"resolution": [8, 8], "spp": 1}},
+      "materials": {{"m": {{"type": "diffuse", "albedo": [0.5, 0.5, 0.5]}}}},
+      "shapes": [{{"type": "mesh", "positions": {}, "indices": [[0, 1, 2], [0, 2, 3]],
+                   "material": "m"}}]
+    }})",
+                       positions);
+  };
+  const Built rect(scene("[[0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0]]"), 0.5f);
+  EXPECT_EQ(rect.mesh.size(), 2u * 4 * 2);
+  Pcg32 rng(4);
+  for (int i = 0; i < 200; ++i) {
+    const Vec3 p{2 * rng.next_float(), rng.next_float(), 0};
+    const uint32_t prim = p.y < 0.5f * p.x ? 0 : 1;  // the triangle (0,1,2) lies below the diagonal
+    const uint32_t e = rect.mesh.locate(prim, p, {0, 0, 1});
+    ASSERT_LT(e, rect.mesh.size());
+    float w[4];
+    rect.mesh.corner_weights(e, p, w);
+    for (int k = 0; k < 4; ++k) EXPECT_GE(w[k], -1e-4f) << "the element does not contain p";
+  }
+  const Built kite(scene("[[0, 0, 0], [2, 0, 0], [2.5, 1.5, 0], [0, 1, 0]]"), 0.5f);
+  EXPECT_GT(kite.mesh.size(), 2u * 4 * 2);
+  for (const RadiosityElement& e : kite.mesh.elements()) EXPECT_EQ(e.corners, 3);
+}
+
 TEST(RadiosityMesh, RefusesMoreElementsThanTheBudget) {
   const World world(test::scene_from_text(mixed_scene()), "bvh");
   EXPECT_THROW(RadiosityMesh::build(world, 0.5f, 359), Error);

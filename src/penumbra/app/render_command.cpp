@@ -174,6 +174,7 @@ int run_render(const RenderArgs& args) {
       if (!args.quiet) fmt::print(stderr, "\ncheckpoint: {} spp to {}\n", spp, args.output);
     };
   }
+  options.on_warning = [](const std::string& m) { fmt::print(stderr, "warning: {}\n", m); };
   std::unique_ptr<RenderProgressLine> line;
   if (!args.quiet) {
     line = std::make_unique<RenderProgressLine>();

@@ -4,6 +4,7 @@
 /// tests build renders through it; later front ends (Python bindings, distributed rendering) are
 /// meant to as well.
 #include <memory>
+#include <string>
 
 #include "penumbra/render/camera/camera.h"
 #include "penumbra/render/film.h"
@@ -38,6 +39,10 @@ class RenderJob {
   /// a fixed order (pixel offset, lens, time) before the integrator's; `filter_weight` receives
   /// the reconstruction filter's weight of the sample.
   Ray camera_ray(Sampler& s, int x, int y, int index, float& filter_weight) const;
+  /// Passes a warning to options.on_warning, when set.
+  void warn(const std::string& message) const {
+    if (options.on_warning) options.on_warning(message);
+  }
   /// Reports preprocessing progress through options.on_preprocess, when set.
   void report_preprocess(const char* what, double fraction) const {
     if (options.on_preprocess) options.on_preprocess(what, fraction);

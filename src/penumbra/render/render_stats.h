@@ -41,6 +41,8 @@ struct RenderOptions {
   std::function<void(const RenderProgress&)> on_progress;
   /// Called by an integrator's preprocessing step with what it does and how far it is (0..1).
   std::function<void(const char* what, double fraction)> on_preprocess;
+  /// Called with a warning about the render (a material an integrator cannot represent, ...).
+  std::function<void(const std::string& message)> on_warning;
   /// When set and true, no further tiles are started; finished tiles are kept.
   const std::atomic<bool>* cancel = nullptr;
 };

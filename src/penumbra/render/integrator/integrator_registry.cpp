@@ -9,6 +9,7 @@
 #include "penumbra/render/integrator/photon_integrator.h"
 #include "penumbra/render/integrator/raycast_integrator.h"
 #include "penumbra/render/integrator/sppm_integrator.h"
+#include "penumbra/render/radiosity/radiosity_integrator.h"
 #include "penumbra/render/integrator/whitted_integrator.h"
 
 namespace penumbra {
@@ -46,6 +47,10 @@ const Registry<Factory>& registry() {
       {"sppm", "stochastic progressive photon mapping (Hachisuka, Jensen 2009)",
        [](const World& w, const ParamList& p, const RenderSettings& s) {
          return std::make_unique<SppmIntegrator>(w, p, s);
+       }},
+      {"radiosity", "radiosity: diffuse patches, form factors, a linear solve (Goral et al. 1984)",
+       [](const World& w, const ParamList& p, const RenderSettings& s) {
+         return std::make_unique<RadiosityIntegrator>(w, p, s);
        }},
   };
   return all;

@@ -40,7 +40,8 @@ class RadiosityMesh {
  public:
   /// Meshes every primitive of `world` into elements no larger than about `patch_size` (world
   /// units) across: a parallelogram into an n1 x n2 grid (n = ceil(edge / patch_size)), a
-  /// triangle into s^2 similar triangles (s = ceil(longest edge / patch_size)), a sphere into
+  /// triangle into s^2 similar triangles (s = ceil(longest edge / patch_size)) unless it
+  /// and the next triangle of its shape form a parallelogram, which is meshed as one grid, a sphere into
   /// an n_lon x n_lat longitude x latitude grid (n_lon = max(8, ceil(2 pi r / patch_size)),
   /// n_lat = max(4, ceil(pi r / patch_size))) of planar chord triangles with vertices on the
   /// sphere: one per cell in the two polar bands, two per cell elsewhere (a cell's four corners

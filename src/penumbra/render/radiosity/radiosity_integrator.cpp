@@ -1,0 +1,268 @@
+#include "penumbra/render/radiosity/radiosity_integrator.h"
+
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "penumbra/core/error.h"
+#include "penumbra/core/rng.h"
+#include "penumbra/core/timer.h"
+#include "penumbra/render/integrator/direct_lighting.h"
+#include "penumbra/render/material/diffuse_material.h"
+#include "penumbra/render/radiosity/hierarchical_radiosity.h"
+#include "penumbra/render/radiosity/radiosity_solution.h"
+#include "penumbra/render/render_job.h"
+#include "penumbra/render/sampling.h"
+
+namespace penumbra {
+
+namespace {
+
+/// Corners average the radiosity of the elements of their shape around them whose normals lie
+/// within about 30 degrees of their own: smooth across a flat or gently curved surface, sharp at
+/// a crease and at the edge of a light.
+constexpr float kSmoothCos = 0.85f;
+/// A patch size larger than any scene: one top-level element per primitive.
+constexpr float kCoarse = 1e30f;
+
+std::string check_method(const std::string& name, const std::vector<std::string>& valid,
+                         const char* what) {
+  for (const std::string& v : valid)
+    if (v == name) return name;
+  std::string list;
+  for (const std::string& v : valid) list += (list.empty() ? "" : ", ") + v;
+  throw Error(fmt::format("radiosity: unknown {} '{}' (valid: {})", what, name, list));
+}
+
+}  // namespace
+
+RadiosityIntegrator::RadiosityIntegrator(const World& world, const ParamList& params,
+                                         const RenderSettings&)
+    : world_(world), light_sampler_(world.lights(), "power") {
+  const float diag = length(world.bounds().diagonal());
+  const float scale = std::isfinite(diag) && diag > 0.0f ? diag : 1.0f;
+  patch_given_ = params.has("patch");
+  patch_ = float(params.get_real("patch", scale / 25.0, 1e-30, 1e30));
+  max_elements_ = size_t(params.get_int("max_elements", 200000, 1, 1ll << 32));
+  ff_options_.method = check_method(params.get_string("form_factors", "raycast"),
+                                    {"raycast", "hemicube"}, "form-factor method");
+  ff_options_.rays = int(params.get_int("rays", 1024, 1, 1 << 24));
+  ff_options_.resolution = int(params.get_int("resolution", 64, 2, 4096));
+  solve_options_.method =
+      check_method(params.get_string("solver", "gauss-seidel"), radiosity_solver_names(), "solver");
+  solve_options_.tolerance = params.get_real("tolerance", 1e-4, 1e-12, 1.0);
+  solve_options_.max_iterations = int(params.get_int("max_iterations", 1000, 1, 1 << 24));
+  hierarchy_ = params.has("hierarchy") && params.get_flag("hierarchy");
+  epsilon_ = params.get_real("epsilon", HierarchicalOptions{}.epsilon, 1e-12, 1.0);
+  link_grid_ = int(params.get_int("link_grid", HierarchicalOptions{}.link_grid, 1, 64));
+  final_gather_ = params.has("final_gather") ? params.get_flag("final_gather") : true;
+  gather_rays_ = int(params.get_int("gather", 1, 1, 1 << 16));
+  solution_file_ = params.get_string("solution", "");
+  const std::string show = params.get_string("show", "none");
+  if (show != "none" && show != "elements")
+    throw Error("radiosity: unknown show '" + show + "' (valid: none, elements)");
+  show_elements_ = show == "elements";
+  params.check_all_used();
+}
+
+RadiosityIntegrator::~RadiosityIntegrator() = default;
+
+std::string RadiosityIntegrator::name() const {
+  std::string s = fmt::format("radiosity:patch={:g}", patch_);
+  if (!solution_file_.empty()) return s + ",solution=" + solution_file_;
+  if (hierarchy_) {
+    s += fmt::format(",hierarchy,epsilon={:g}", epsilon_);
+  } else {
+    s += ",form_factors=" + ff_options_.method;
+    s += ff_options_.method == "raycast" ? fmt::format(",rays={}", ff_options_.rays)
+                                         : fmt::format(",resolution={}", ff_options_.resolution);
+    s += ",solver=" + solve_options_.method;
+  }
+  s += final_gather_ ? fmt::format(",gather={}", gather_rays_) : ",final_gather=false";
+  if (show_elements_) s += ",show=elements";
+  return s;
+}
+
+void RadiosityIntegrator::preprocess(RenderJob& job) {
+  solve(job);
+}
+
+void RadiosityIntegrator::solve(RenderJob& job) {
+  report_ = {};
+  hr_.reset();
+  // The mesh, with a warning for every material it cannot represent exactly.
+  const Timer mesh_timer;
+  std::vector<std::string> warnings;
+  // The hierarchy refines coarse top-level patches itself (each pair of facing top-level
+  // patches costs a link): one element per primitive (a merged triangle pair, a quad) unless the
+  // patch size is given.
+  mesh_ = RadiosityMesh::build(world_, hierarchy_ && !patch_given_ ? kCoarse : patch_,
+                               max_elements_, &warnings);
+  for (const std::string& w : warnings) job.warn("radiosity: " + w);
+  for (const Light* l : world_.lights())
+    if (l->kind() != LightKind::kArea) {
+      job.warn(
+          "radiosity: point, directional and environment lights are not in the radiosity "
+          "solution (only emissive shapes are); they light the final gather's direct term");
+      break;
+    }
+  report_.elements = mesh_.size();
+  report_.mesh_seconds = mesh_timer.elapsed_s();
+  const std::vector<RadiosityElement>& el = mesh_.elements();
+
+  if (!solution_file_.empty()) {
+    corners_ = read_radiosity_solution(solution_file_, mesh_);
+    b_.assign(el.size(), Rgb{});
+    for (size_t e = 0; e < el.size(); ++e) {
+      Rgb sum;
+      for (int k = 0; k < el[e].corners; ++k) sum += corners_[4 * e + size_t(k)];
+      b_[e] = sum / float(el[e].corners);
+    }
+    report_.loaded = true;
+    return;
+  }
+
+  if (hierarchy_) {
+    job.report_preprocess("hierarchical radiosity", 0.0);
+    const auto visible = [this](Vec3 a, Vec3 b) {
+      Ray r;
+      r.o = a;
+      r.d = b - a;
+      r.tmin = 1e-4f;
+      r.tmax = 1.0f - 1e-4f;
+      RayCounter c;
+      return world_.occluded(r, c) ? 0.0f : 1.0f;
+    };
+    HierarchicalOptions ho;
+    ho.epsilon = float(epsilon_);
+    ho.tolerance = solve_options_.tolerance;
+    // Leaves no smaller than a quarter of a patch: where patches touch (a block on the floor)
+    // the oracle refines regardless, and leaves of the scene's area x 1e-5 made 7 million links
+    // on the Cornell box.
+    if (!patch_given_) ho.min_area = 0.25f * patch_ * patch_;
+    ho.link_grid = link_grid_;
+    hr_ = std::make_unique<HierarchicalRadiosity>(
+        HierarchicalRadiosity::solve(el, mesh_.vertices(), visible, ho));
+    b_ = hr_->patch_radiosity();
+    const HierarchicalStats& st = hr_->stats();
+    report_.solve_seconds = st.seconds;
+    report_.links = st.links;
+    report_.nodes = st.nodes;
+    report_.hierarchy_bytes = st.memory_bytes;
+    report_.iterations = st.iterations;
+    report_.residuals = hr_->changes();
+  } else {
+    job.report_preprocess("form factors", 0.0);
+    FormFactors ff = compute_form_factors(world_, mesh_, ff_options_);
+    form_factor_diagnostics(mesh_, ff);
+    report_.form_factor_seconds = ff.seconds;
+    report_.matrix_bytes = ff.f.size() * sizeof(float);
+    report_.reciprocity_error = ff.reciprocity_error;
+    report_.min_row_sum = ff.min_row_sum;
+    report_.max_row_sum = ff.max_row_sum;
+    if (job.cancelled()) return;
+    job.report_preprocess("radiosity solve", 0.0);
+    RadiositySystem sys;
+    sys.n = el.size();
+    sys.f = ff.f.data();
+    for (const RadiosityElement& e : el) {
+      sys.rho.push_back(e.rho);
+      sys.emission.push_back(e.emission);
+      sys.area.push_back(e.area);
+    }
+    const SolveResult r = solve_radiosity(sys, solve_options_);
+    b_ = r.b;
+    if (!r.ambient.empty())
+      for (size_t i = 0; i < b_.size(); ++i) b_[i] += r.ambient[i];
+    report_.solve_seconds = r.seconds;
+    report_.iterations = r.iterations;
+    report_.residuals = r.residuals;
+    if (!r.converged)
+      job.warn(
+          fmt::format("radiosity: {} did not reach the tolerance {:g} in {} iterations "
+                      "(residual {:g})",
+                      solve_options_.method, solve_options_.tolerance, r.iterations,
+                      r.residuals.empty() ? 0.0 : r.residuals.back()));
+  }
+  average_corners();
+}
+
+void RadiosityIntegrator::average_corners() {
+  const std::vector<RadiosityElement>& el = mesh_.elements();
+  // Per vertex, the elements that touch it.
+  std::vector<std::vector<uint32_t>> around(mesh_.vertices().size());
+  for (uint32_t e = 0; e < el.size(); ++e)
+    for (int k = 0; k < el[e].corners; ++k) around[el[e].v[k]].push_back(e);
+  corners_.assign(4 * el.size(), Rgb{});
+  // Only within a shape: a light's radiosity must not bleed into the ceiling around it.
+  const auto shape = [&](uint32_t e) { return world_.primitives().origin(el[e].prim).shape; };
+  for (uint32_t e = 0; e < el.size(); ++e)
+    for (int k = 0; k < el[e].corners; ++k) {
+      // Area-weighted over the neighbours facing the same way.
+      Rgb sum;
+      float area = 0.0f;
+      for (uint32_t o : around[el[e].v[k]])
+        if (dot(el[o].normal, el[e].normal) >= kSmoothCos && shape(o) == shape(e)) {
+          sum += b_[o] * el[o].area;
+          area += el[o].area;
+        }
+      corners_[4 * size_t(e) + size_t(k)] = area > 0.0f ? sum / area : b_[e];
+    }
+}
+
+Rgb RadiosityIntegrator::radiosity_at(uint32_t e, Vec3 p) const {
+  if (hr_) return hr_->radiosity_at(e, p);  // the leaf's (piecewise constant)
+  float w[4];
+  mesh_.corner_weights(e, p, w);
+  Rgb b;
+  for (int k = 0; k < mesh_.elements()[e].corners; ++k)
+    b += corners_[4 * size_t(e) + size_t(k)] * w[k];
+  return b;
+}
+
+Rgb RadiosityIntegrator::gathered(const Ray& ray, RayCounter& counter) const {
+  SurfaceInteraction y;
+  if (!world_.intersect(ray, y, counter)) return {};
+  const uint32_t e = mesh_.locate(y.prim, y.p, y.wo);
+  if (e == UINT32_MAX) return {};
+  // Reflected radiosity only: emission reached from the gather point is its direct light,
+  // which the shadow ray counts.
+  Rgb b = radiosity_at(e, y.p) - mesh_.elements()[e].emission;
+  for (int c = 0; c < 3; ++c) b[c] = std::max(0.0f, b[c]);
+  return b * std::numbers::inv_pi_v<float>;
+}
+
+Rgb RadiosityIntegrator::li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
+  SurfaceInteraction si;
+  if (!world_.intersect(ray, si, counter)) return world_.escaped(ray);
+  const uint32_t e = mesh_.locate(si.prim, si.p, si.wo);
+  if (e == UINT32_MAX) return si.emitted;
+  if (show_elements_) {
+    // Each element flat, in a colour of its own, scaled by its radiosity: the mesh as solved.
+    const uint64_t h = mix64(e / 2 + 1);  // both sides of a piece alike
+    const Rgb tint{0.4f + 0.6f * float(h & 255) / 255.0f,
+                   0.4f + 0.6f * float((h >> 8) & 255) / 255.0f,
+                   0.4f + 0.6f * float((h >> 16) & 255) / 255.0f};
+    return tint * (b_[e].luminance() * std::numbers::inv_pi_v<float>);
+  }
+  if (!final_gather_) return radiosity_at(e, si.p) * std::numbers::inv_pi_v<float>;
+
+  // Final gather: emission, direct light by a shadow ray, and one bounce into the solution,
+  // all through the diffuse surface the solution assumes.
+  const Rgb rho = mesh_.elements()[e].rho;
+  const DiffuseMaterial diffuse(rho);
+  const Vec3 wo = si.to_local(si.wo);
+  Rgb l = si.emitted +
+          estimate_direct(world_, light_sampler_, si, diffuse, wo, ray.time, sampler, counter);
+  Rgb indirect;
+  for (int g = 0; g < gather_rays_; ++g) {
+    // Cosine-weighted on the side the camera sees: f cos / pdf = rho.
+    Vec3 wi = sample_cosine_hemisphere(sampler.get_2d());
+    if (wo.z < 0.0f) wi.z = -wi.z;
+    indirect += rho * gathered(si.spawn_ray(si.to_world(wi), ray.time), counter);
+  }
+  return l + indirect / float(gather_rays_);
+}
+
+}  // namespace penumbra

@@ -1,0 +1,101 @@
+#pragma once
+/// `radiosity`: diffuse global illumination as a linear system over a patch mesh, solved before
+/// the first pass and displayed per camera sample (Goral, Torrance, Greenberg, Battaile 1984,
+/// "Modeling the Interaction of Light Between Diffuse Surfaces"; Cohen, Wallace 1993,
+/// "Radiosity and Realistic Image Synthesis").
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "penumbra/core/params.h"
+#include "penumbra/render/integrator/integrator.h"
+#include "penumbra/render/light/light_sampler.h"
+#include "penumbra/render/radiosity/form_factors.h"
+#include "penumbra/render/radiosity/radiosity_mesh.h"
+#include "penumbra/render/radiosity/radiosity_solver.h"
+#include "penumbra/scene/scene_desc.h"
+
+namespace penumbra {
+
+class HierarchicalRadiosity;
+
+/// What the last solve did, for the CLI's report and the benchmarks.
+struct RadiosityReport {
+  size_t elements = 0;
+  double mesh_seconds = 0, form_factor_seconds = 0, solve_seconds = 0;
+  size_t matrix_bytes = 0;  ///< the dense form factors (0 with the hierarchy)
+  double reciprocity_error = 0, min_row_sum = 0, max_row_sum = 0;
+  int iterations = 0;
+  std::vector<double> residuals;  ///< per iteration (the hierarchy: per gather the change)
+  size_t links = 0, nodes = 0, hierarchy_bytes = 0;  ///< with the hierarchy
+  bool loaded = false;                               ///< the solution came from a file
+};
+
+/// The preprocess meshes every surface into patches of about `patch` world units, computes the
+/// form factors (ray casting through the world's accelerator, or the hemicube) and solves the
+/// radiosity system (Gauss-Seidel, Jacobi or progressive refinement), or, with `hierarchy`,
+/// solves by hierarchical radiosity with links instead of a matrix (Hanrahan, Salzman,
+/// Aupperle 1991): the top level is then one patch per primitive (unless `patch` is given),
+/// which the hierarchy subdivides where the light changes, and the display shows its leaves. Each
+/// element's radiosity is averaged to its corners over the neighbouring elements that face the same
+/// way, so a camera sample sees the Gouraud-interpolated radiosity B(x) / pi of the element it
+/// hits; with `final_gather` (the default) it sees instead the emission, direct light by a shadow
+/// ray and one bounce of gather rays into the solution, which sharpens shadows and hides the mesh.
+/// Only emissive shapes are the solution's light sources; point, directional and environment lights
+/// reach the image only through the final gather's direct term (a warning says so). Non-diffuse
+/// materials are treated as diffuse with their albedo (a warning names them).
+///
+/// Parameters (defaults): patch [diagonal / 25], max_elements [200000], form_factors [raycast;
+/// hemicube], rays [1024], resolution [64], solver [gauss-seidel; jacobi, progressive],
+/// tolerance [1e-4], max_iterations [1000], hierarchy [false], epsilon [the hierarchy's link
+/// threshold], final_gather [true], gather [1] rays per sample, solution [a .ply written by
+/// `penumbra radiosity` to reuse instead of solving], show [none; elements: each element flat in
+/// a colour of its own, to see the mesh].
+class RadiosityIntegrator final : public SamplingIntegrator {
+ public:
+  RadiosityIntegrator(const World& world, const ParamList& params, const RenderSettings& settings);
+  ~RadiosityIntegrator() override;
+  std::string name() const override;
+  void preprocess(RenderJob& job) override;
+  Rgb li(const Ray& ray, Sampler& sampler, RayCounter& counter) const override;
+
+  /// Builds the mesh and solves (or loads the solution); the preprocess step, callable alone.
+  void solve(RenderJob& job);
+  const RadiosityMesh& mesh() const { return mesh_; }
+  /// Per element, its radiosity (W/m^2).
+  const std::vector<Rgb>& radiosity() const { return b_; }
+  /// Per element and corner (4 per element), the radiosity interpolated for display.
+  const std::vector<Rgb>& corner_radiosity() const { return corners_; }
+  /// The hierarchical solution (null unless `hierarchy`): its leaves are the display's patches.
+  const HierarchicalRadiosity* hierarchy() const { return hr_.get(); }
+  const RadiosityReport& report() const { return report_; }
+
+ private:
+  /// The Gouraud-interpolated radiosity of element e at p.
+  Rgb radiosity_at(uint32_t e, Vec3 p) const;
+  /// Averages element radiosity to the element corners (over neighbours facing the same way).
+  void average_corners();
+  /// Radiance reflected (not emitted) by the surface a gather ray reached.
+  Rgb gathered(const Ray& ray, RayCounter& counter) const;
+
+  const World& world_;
+  float patch_;
+  bool patch_given_ = false;
+  size_t max_elements_;
+  FormFactorOptions ff_options_;
+  SolveOptions solve_options_;
+  bool hierarchy_;
+  double epsilon_;
+  int link_grid_;
+  bool final_gather_;
+  bool show_elements_ = false;
+  int gather_rays_;
+  std::string solution_file_;
+  LightSampler light_sampler_;
+  RadiosityMesh mesh_;
+  std::vector<Rgb> b_, corners_;
+  std::unique_ptr<HierarchicalRadiosity> hr_;  ///< the hierarchical solution, when used
+  RadiosityReport report_;
+};
+
+}  // namespace penumbra
