@@ -91,7 +91,7 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--accel", args->accel, "Acceleration structure NAME[:params] (see accel-bench)");
   cmd->add_option("--integrator", args->integrator,
                   "Integrator NAME[:params]: raycast, whitted, distribution, path, photon, "
-                  "sppm (docs/rendering.md, docs/photon-mapping.md)");
+                  "sppm, radiosity (docs/rendering.md, photon-mapping.md, radiosity.md)");
   cmd->add_option("--sampler", args->sampler,
                   "Pixel sampler: independent (random), regular, jittered, sobol");
   cmd->add_option("--filter", args->filter,
