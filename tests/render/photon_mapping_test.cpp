@@ -78,43 +78,12 @@ TEST(PhotonEnclosure, ClosedEmissiveSphereReachesEOverOneMinusRho) {
   }
 }
 
-/// The bundled Cornell box at w x w with `integrator` and `spp`.
-RgbImage cornell(const std::string& integrator, int w, int spp, int threads = 0) {
-  auto desc = test::bundled_scene("cornell-box.json");
-  desc.render.width = desc.render.height = w;
-  desc.render.spp = spp;
-  desc.render.integrator = integrator;
-  return test::render_desc(desc, threads);
-}
-
-/// Mean of each channel over the pixel rectangle [x0, x1) x [y0, y1).
-Rgb region_mean(const RgbImage& img, int x0, int y0, int x1, int y1) {
-  double s[3] = {0, 0, 0};
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      for (int c = 0; c < 3; ++c) s[c] += img.at(x, y)[c];
-  const double n = double((x1 - x0) * (y1 - y0));
-  return {float(s[0] / n), float(s[1] / n), float(s[2] / n)};
-}
-
-/// Regions of the 64 x 64 Cornell box: left (red) and right (green) walls, back wall, floor and
-/// ceiling, away from edges and blocks.
-struct Region {
-  const char* name;
-  int x0, y0, x1, y1;
-};
-constexpr Region kRegions[] = {{"red wall", 3, 20, 9, 44},
-                               {"green wall", 55, 20, 61, 44},
-                               {"back wall", 24, 12, 40, 22},
-                               {"floor", 14, 57, 50, 62},
-                               {"ceiling", 14, 2, 24, 6}};
-
 /// Expects every region mean of `got` within `tolerance` (relative, per channel above 0.02) of
 /// the reference's.
 void expect_regions_agree(const RgbImage& got, const RgbImage& ref, double tolerance) {
-  for (const Region& r : kRegions) {
-    const Rgb a = region_mean(got, r.x0, r.y0, r.x1, r.y1);
-    const Rgb b = region_mean(ref, r.x0, r.y0, r.x1, r.y1);
+  for (const test::ImageRegion& r : test::kCornellRegions64) {
+    const Rgb a = test::region_mean(got, r.x0, r.y0, r.x1, r.y1);
+    const Rgb b = test::region_mean(ref, r.x0, r.y0, r.x1, r.y1);
     for (int c = 0; c < 3; ++c) {
       if (b[c] < 0.02f) continue;
       EXPECT_LE(std::fabs(a[c] / b[c] - 1.0f), tolerance)
@@ -127,9 +96,9 @@ void expect_regions_agree(const RgbImage& got, const RgbImage& ref, double toler
 // photon with its default parameters within 5%. path's own error at 1024 spp on these regions
 // (>= 60 pixels each) is below 0.3%.
 TEST(PhotonMappingCornellBox, SppmAndPhotonAgreeWithPathOnEveryRegion) {
-  const RgbImage path = cornell("path", 64, 1024);
-  expect_regions_agree(cornell("sppm:photons=40000", 64, 256), path, 0.02);
-  expect_regions_agree(cornell("photon", 64, 64), path, 0.05);
+  const RgbImage path = test::cornell_box("path", 64, 1024);
+  expect_regions_agree(test::cornell_box("sppm:photons=40000", 64, 256), path, 0.02);
+  expect_regions_agree(test::cornell_box("photon", 64, 64), path, 0.05);
 }
 
 // Photons traced and gathered in fixed chunks, visible points per pixel: the same bits on one
@@ -137,7 +106,7 @@ TEST(PhotonMappingCornellBox, SppmAndPhotonAgreeWithPathOnEveryRegion) {
 TEST(PhotonMappingDeterminism, SameBitsAtAnyThreadCount) {
   for (const char* integrator : {"sppm:photons=5000", "photon:photons=5000,caustic_photons=2000"}) {
     SCOPED_TRACE(integrator);
-    EXPECT_TRUE(cornell(integrator, 24, 4, 1) == cornell(integrator, 24, 4, 2));
+    EXPECT_TRUE(test::cornell_box(integrator, 24, 4, 1) == test::cornell_box(integrator, 24, 4, 2));
   }
 }
 
@@ -159,12 +128,12 @@ TEST(SppmCameraEffects, OpenSceneWithThinLensMatchesPathBlockByBlock) {
   int blocks = 0;
   for (int by = 0; by < 48; by += 8)
     for (int bx = 0; bx < 64; bx += 8) {
-      const float a = region_mean(sppm, bx, by, bx + 8, by + 8).g;
-      const float b = region_mean(path, bx, by, bx + 8, by + 8).g;
+      const float a = test::region_mean(sppm, bx, by, bx + 8, by + 8).g;
+      const float b = test::region_mean(path, bx, by, bx + 8, by + 8).g;
       if (b < 0.01f) continue;
       ++blocks;
-      EXPECT_LE(std::fabs(a / b - 1.0f), 0.06f) << "block " << bx << "," << by << ": " << a
-                                                << " vs path " << b;
+      EXPECT_LE(std::fabs(a / b - 1.0f), 0.06f)
+          << "block " << bx << "," << by << ": " << a << " vs path " << b;
     }
   EXPECT_GE(blocks, 24);
 }
@@ -188,7 +157,7 @@ TEST(PhotonMappingCaustic, CausticAppearsWherePathPutsIt) {
   const RgbImage shown = caustic_scene("photon:show=caustic,caustic_photons=400000", 1);
   // The caustic: floor pixels below the sphere whose path radiance is at least twice the lit
   // floor's level at the image's bottom edge.
-  const double floor_level = region_mean(path, 0, 44, 64, 48).g;
+  const double floor_level = test::region_mean(path, 0, 44, 64, 48).g;
   ASSERT_GT(floor_level, 0.0);
   double path_sum = 0, sppm_sum = 0, shown_sum = 0;
   int n = 0;
@@ -202,7 +171,7 @@ TEST(PhotonMappingCaustic, CausticAppearsWherePathPutsIt) {
   EXPECT_LE(std::fabs(sppm_sum / path_sum - 1.0), 0.15)
       << "sppm " << sppm_sum / n << " path " << path_sum / n;
   EXPECT_GT(shown_sum / n, floor_level) << "the caustic map is not bright on the caustic";
-  EXPECT_LT(region_mean(shown, 0, 44, 16, 48).g, 0.05 * floor_level)
+  EXPECT_LT(test::region_mean(shown, 0, 44, 16, 48).g, 0.05 * floor_level)
       << "the caustic map holds light far from the sphere";
 }
 

@@ -55,34 +55,6 @@ TEST(RadiosityEnclosure, ClosedEmissiveSphereReachesEOverOneMinusRho) {
   }
 }
 
-/// The bundled Cornell box at w x w by `integrator` at `spp`.
-RgbImage cornell(const std::string& integrator, int w, int spp) {
-  auto desc = test::bundled_scene("cornell-box.json");
-  desc.render.width = desc.render.height = w;
-  desc.render.spp = spp;
-  desc.render.integrator = integrator;
-  return test::render_desc(desc);
-}
-
-Rgb region_mean(const RgbImage& img, int x0, int y0, int x1, int y1) {
-  double s[3] = {0, 0, 0};
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      for (int c = 0; c < 3; ++c) s[c] += img.at(x, y)[c];
-  const double n = double((x1 - x0) * (y1 - y0));
-  return {float(s[0] / n), float(s[1] / n), float(s[2] / n)};
-}
-
-struct Region {
-  const char* name;
-  int x0, y0, x1, y1;
-};
-constexpr Region kRegions[] = {{"red wall", 3, 20, 9, 44},
-                               {"green wall", 55, 20, 61, 44},
-                               {"back wall", 24, 12, 40, 22},
-                               {"floor", 14, 57, 50, 62},
-                               {"ceiling", 14, 2, 24, 6}};
-
 // The three solvers of the rendering equation on one scene: path (unbiased), sppm (consistent)
 // and radiosity with its final gather (the diffuse solution of a patch mesh). Each region's
 // means must agree pairwise within the sum of the methods' error allowances: path's noise at
@@ -90,9 +62,9 @@ constexpr Region kRegions[] = {{"red wall", 3, 20, 9, 44},
 // (PhotonMappingCornellBox), radiosity's: the one-bounce gather into a mesh of ~22-unit patches
 // blurs the indirect light (about a third of these regions' radiance) over a patch; we allow 3 %.
 TEST(ThreeSolvers, PathSppmAndRadiosityAgreeOnTheCornellBox) {
-  const RgbImage path = cornell("path", 64, 1024);
-  const RgbImage sppm = cornell("sppm:photons=40000", 64, 256);
-  const RgbImage rad = cornell("radiosity", 64, 64);
+  const RgbImage path = test::cornell_box("path", 64, 1024);
+  const RgbImage sppm = test::cornell_box("sppm:photons=40000", 64, 256);
+  const RgbImage rad = test::cornell_box("radiosity", 64, 64);
   struct Pair {
     const RgbImage *a, *b;
     const char* name;
@@ -102,9 +74,9 @@ TEST(ThreeSolvers, PathSppmAndRadiosityAgreeOnTheCornellBox) {
                         {&rad, &path, "radiosity vs path", 0.033},
                         {&rad, &sppm, "radiosity vs sppm", 0.05}};
   for (const Pair& p : pairs)
-    for (const Region& r : kRegions) {
-      const Rgb a = region_mean(*p.a, r.x0, r.y0, r.x1, r.y1);
-      const Rgb b = region_mean(*p.b, r.x0, r.y0, r.x1, r.y1);
+    for (const test::ImageRegion& r : test::kCornellRegions64) {
+      const Rgb a = test::region_mean(*p.a, r.x0, r.y0, r.x1, r.y1);
+      const Rgb b = test::region_mean(*p.b, r.x0, r.y0, r.x1, r.y1);
       for (int c = 0; c < 3; ++c) {
         if (b[c] < 0.02f) continue;
         EXPECT_LE(std::fabs(a[c] / b[c] - 1.0f), p.tolerance)
@@ -119,12 +91,12 @@ TEST(ThreeSolvers, PathSppmAndRadiosityAgreeOnTheCornellBox) {
 // back wall reads 7 % bright), and the solvers and the hemicube agree with the default within
 // 3 % (the hemicube at 64 x 64 cells measured 1.5 % from ray casting).
 TEST(RadiositySolution, MethodsAndSolversAgreeOnTheCornellBox) {
-  const RgbImage path = cornell("path", 64, 1024);
-  const RgbImage ref = cornell("radiosity:final_gather=false", 64, 4);
+  const RgbImage path = test::cornell_box("path", 64, 1024);
+  const RgbImage ref = test::cornell_box("radiosity:final_gather=false", 64, 4);
   const auto agree = [](const RgbImage& got, const RgbImage& want, double tolerance) {
-    for (const Region& r : kRegions) {
-      const Rgb a = region_mean(got, r.x0, r.y0, r.x1, r.y1);
-      const Rgb b = region_mean(want, r.x0, r.y0, r.x1, r.y1);
+    for (const test::ImageRegion& r : test::kCornellRegions64) {
+      const Rgb a = test::region_mean(got, r.x0, r.y0, r.x1, r.y1);
+      const Rgb b = test::region_mean(want, r.x0, r.y0, r.x1, r.y1);
       for (int c = 0; c < 3; ++c)
         if (b[c] >= 0.02f) {
           EXPECT_LE(std::fabs(a[c] / b[c] - 1.0f), tolerance) << r.name << " " << c;
@@ -136,7 +108,7 @@ TEST(RadiositySolution, MethodsAndSolversAgreeOnTheCornellBox) {
                             "radiosity:final_gather=false,solver=progressive",
                             "radiosity:final_gather=false,form_factors=hemicube"}) {
     SCOPED_TRACE(other);
-    agree(cornell(other, 64, 4), ref, 0.03);
+    agree(test::cornell_box(other, 64, 4), ref, 0.03);
   }
 }
 

@@ -34,4 +34,36 @@ inline SceneDesc bundled_scene(const std::string& name) {
   return load_scene(std::string(PENUMBRA_SOURCE_DIR) + "/scenes/" + name);
 }
 
+/// The bundled Cornell box at w x w with `integrator` and `spp`, on `threads` workers (0 = all).
+inline RgbImage cornell_box(const std::string& integrator, int w, int spp, int threads = 0) {
+  auto desc = bundled_scene("cornell-box.json");
+  desc.render.width = desc.render.height = w;
+  desc.render.spp = spp;
+  desc.render.integrator = integrator;
+  return render_desc(desc, threads);
+}
+
+/// Mean of each channel over the pixel rectangle [x0, x1) x [y0, y1).
+inline Rgb region_mean(const RgbImage& img, int x0, int y0, int x1, int y1) {
+  double s[3] = {0, 0, 0};
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int c = 0; c < 3; ++c) s[c] += img.at(x, y)[c];
+  const double n = double((x1 - x0) * (y1 - y0));
+  return {float(s[0] / n), float(s[1] / n), float(s[2] / n)};
+}
+
+/// A named pixel rectangle of an image.
+struct ImageRegion {
+  const char* name;
+  int x0, y0, x1, y1;
+};
+/// Regions of the 64 x 64 Cornell box: left (red) and right (green) walls, back wall, floor and
+/// ceiling, away from edges and blocks.
+inline constexpr ImageRegion kCornellRegions64[] = {{"red wall", 3, 20, 9, 44},
+                                                    {"green wall", 55, 20, 61, 44},
+                                                    {"back wall", 24, 12, 40, 22},
+                                                    {"floor", 14, 57, 50, 62},
+                                                    {"ceiling", 14, 2, 24, 6}};
+
 }  // namespace penumbra::test

@@ -9,6 +9,7 @@
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/render/integrator/direct_lighting.h"
+#include "penumbra/render/integrator/scatter.h"
 #include "penumbra/render/photon/photon_tracer.h"
 #include "penumbra/render/render_job.h"
 
@@ -146,15 +147,12 @@ Rgb PhotonIntegrator::global_radiance(const SurfaceInteraction& si, const Materi
   return global_.radiance(si, m, global_query_, query_scratch());
 }
 
-Rgb PhotonIntegrator::gather(const SurfaceInteraction& si, const Material& m, Vec3 wo, float time,
+Rgb PhotonIntegrator::gather(const SurfaceInteraction& si, const Material& m, float time,
                              Sampler& sampler, RayCounter& counter) const {
-  const float uc = sampler.get_1d();
-  const Vec2 u = sampler.get_2d();
-  const auto bs = m.sample(wo, uc, u, TransportMode::kRadiance);
-  if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) return {};
-  Vec3 wi = si.to_world(bs->wi);
-  Rgb beta = bs->f * (std::fabs(dot(wi, si.ns)) / bs->pdf);
-  Ray ray = si.spawn_ray(wi, time);
+  Rgb beta(1.0f);
+  Ray ray;
+  ray.time = time;
+  if (!scatter(si, m, sampler, beta, ray)) return {};
   const int limit = max_depth_ >= 0 ? max_depth_ : kMaxSpecularChain;
   for (int depth = 1;; ++depth) {
     // Light reached without another non-specular bounce is direct light or a caustic at si:
@@ -164,14 +162,7 @@ Rgb PhotonIntegrator::gather(const SurfaceInteraction& si, const Material& m, Ve
     MaterialScratch scratch;
     const Material& my = y.material->at(y, scratch);
     if (my.has_non_specular()) return beta * global_radiance(y, my);
-    if (depth >= limit) return {};
-    const float uc2 = sampler.get_1d();
-    const Vec2 u2 = sampler.get_2d();
-    const auto s = my.sample(y.to_local(y.wo), uc2, u2, TransportMode::kRadiance);
-    if (!s || s->f.is_black() || !(s->pdf > 0.0f)) return {};
-    wi = y.to_world(s->wi);
-    beta *= s->f * (std::fabs(dot(wi, y.ns)) / s->pdf);
-    ray = y.spawn_ray(wi, time);
+    if (depth >= limit || !scatter(y, my, sampler, beta, ray)) return {};
   }
 }
 
@@ -201,20 +192,13 @@ Rgb PhotonIntegrator::li(const Ray& camera_ray, Sampler& sampler, RayCounter& co
       if (gather_rays_ > 0) {
         Rgb indirect;
         for (int g = 0; g < gather_rays_; ++g)
-          indirect += gather(si, m, wo, ray.time, sampler, counter);
+          indirect += gather(si, m, ray.time, sampler, counter);
         l += indirect / float(gather_rays_);
       }
       return radiance + beta * l;
     }
     // A specular surface: follow the sampled lobe.
-    if (depth >= limit) break;
-    const float uc = sampler.get_1d();
-    const Vec2 u = sampler.get_2d();
-    const auto bs = m.sample(wo, uc, u, TransportMode::kRadiance);
-    if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) break;
-    const Vec3 wi = si.to_world(bs->wi);
-    beta *= bs->f * (std::fabs(dot(wi, si.ns)) / bs->pdf);
-    ray = si.spawn_ray(wi, ray.time);
+    if (depth >= limit || !scatter(si, m, sampler, beta, ray)) break;
   }
   return radiance;
 }

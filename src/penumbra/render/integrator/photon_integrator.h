@@ -59,7 +59,7 @@ class PhotonIntegrator final : public SamplingIntegrator {
   /// Radiance leaving the non-specular point si towards si.wo from the global map.
   Rgb global_radiance(const SurfaceInteraction& si, const Material& m) const;
   /// Indirect light at the non-specular point si by one final-gather ray.
-  Rgb gather(const SurfaceInteraction& si, const Material& m, Vec3 wo, float time, Sampler& sampler,
+  Rgb gather(const SurfaceInteraction& si, const Material& m, float time, Sampler& sampler,
              RayCounter& counter) const;
 
   const World& world_;

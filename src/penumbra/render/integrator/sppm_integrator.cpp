@@ -12,6 +12,7 @@
 #include "penumbra/core/rng.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/render/integrator/direct_lighting.h"
+#include "penumbra/render/integrator/scatter.h"
 #include "penumbra/render/photon/photon_tracer.h"
 #include "penumbra/render/render_job.h"
 
@@ -106,14 +107,9 @@ void SppmIntegrator::camera_path(RenderJob& job, Sampler& sampler, int x, int y,
       }
     }
     if (depth >= limit) break;
-    const float uc = sampler.get_1d();
-    const Vec2 u = sampler.get_2d();
-    const auto bs = m.sample(wo, uc, u, TransportMode::kRadiance);
-    if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) break;
-    const Vec3 wi = si.to_world(bs->wi);
-    beta *= bs->f * (std::fabs(dot(wi, si.ns)) / bs->pdf);
+    const auto bs = scatter(si, m, sampler, beta, ray);
+    if (!bs) break;
     specular = bs->is_specular();
-    ray = si.spawn_ray(wi, ray.time);
     // Russian roulette on glossy chains (specular ones keep weight <= 1 and end at the limit).
     const float u_rr = sampler.get_1d();
     if (!specular && depth + 1 >= rr_depth_ && beta.max_channel() < 1.0f) {
