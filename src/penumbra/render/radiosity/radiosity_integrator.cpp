@@ -124,6 +124,9 @@ void RadiosityIntegrator::solve(RenderJob& job) {
   }
 
   if (hierarchy_) {
+    job.warn(
+        "radiosity: the hierarchy is experimental: on the Cornell box its solution is up to "
+        "24 % off (docs/radiosity.md); the final gather hides most of it");
     job.report_preprocess("hierarchical radiosity", 0.0);
     const auto visible = [this](Vec3 a, Vec3 b) {
       Ray r;
