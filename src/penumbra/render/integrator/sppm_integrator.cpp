@@ -99,9 +99,15 @@ void SppmIntegrator::camera_path(RenderJob& job, Sampler& sampler, int x, int y,
           px.has_vp = true;
           // The first visible point sets the radius: kFootprints pixel footprints at the
           // distance the path travelled, so the blur is about the same on screen everywhere.
-          if (px.radius == 0.0f)
+          if (px.radius == 0.0f) {
             px.radius = initial_radius_ > 0.0f ? initial_radius_
                                                : kFootprints * length * pixel_angle(job, x, y);
+            // A degenerate footprint (a visible point at the lens) falls back to the scene's
+            // size over the image's.
+            if (!(px.radius > 0.0f) || !std::isfinite(px.radius))
+              px.radius = kFootprints * penumbra::length(world_.bounds().diagonal()) /
+                          float(std::max(job.film->width(), job.film->height()));
+          }
         }
         break;
       }
