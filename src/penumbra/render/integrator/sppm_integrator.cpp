@@ -95,6 +95,7 @@ void SppmIntegrator::camera_path(RenderJob& job, Sampler& sampler, int x, int y,
       if ((m.flags() & kBsdfDiffuse) || depth + 1 >= limit) {
         if (depth < limit) {
           px.vp = si;
+          px.vp_wo = wo;
           px.beta = beta;
           px.has_vp = true;
           // The first visible point sets the radius: kFootprints pixel footprints at the
@@ -159,7 +160,7 @@ void SppmIntegrator::photon_pass(RenderJob& job, int pass, uint64_t& rays) {
           if (std::fabs(dot(px.vp.ng, h.si->ng)) < kSurfaceCos) continue;
           MaterialScratch scratch;
           const Material& m = px.vp.material->at(px.vp, scratch);
-          const Rgb f = m.eval(px.vp.to_local(px.vp.wo), px.vp.to_local(h.si->wo));
+          const Rgb f = m.eval(px.vp_wo, px.vp.to_local(h.si->wo));
           if (!f.is_black()) out.push_back({*it, h.power * f});
         }
         return true;

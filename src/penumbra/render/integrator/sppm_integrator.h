@@ -45,6 +45,7 @@ class SppmIntegrator final : public Integrator {
     // This pass's visible point, when the camera path found one.
     bool has_vp = false;
     SurfaceInteraction vp;      ///< the point (its material is resolved again per photon)
+    Vec3 vp_wo;                 ///< the direction to the camera in vp's shading frame
     Rgb beta;                   ///< throughput from the camera to it
     double phi[3] = {0, 0, 0};  ///< this pass's photon flux through the BSDF
     uint32_t m = 0;             ///< this pass's photons
