@@ -104,6 +104,13 @@ TEST(RadiositySolution, MethodsAndSolversAgreeOnTheCornellBox) {
     }
   };
   agree(ref, path, 0.03);
+  // The hierarchy: its oracle lets a link carry 0.3 % of the mean radiosity (epsilon = 3e-3),
+  // and the display elements gather through the links at their centroids. Measured within 2.2 %
+  // of path on every region (1e-2: 3.4 % on the ceiling; 1e-3: 2.2 %, the floor's, which the
+  // matrix shares). When the oracle's threshold was relative to the light's radiosity (150 times
+  // the walls') the ceiling read 20 % dark; with leaves shown flat instead of gathered at
+  // points, 7 %; with partly occluded links not refined, the floor 4.6 %.
+  agree(test::cornell_box("radiosity:final_gather=false,hierarchy=true", 64, 4), path, 0.03);
   for (const char* other : {"radiosity:final_gather=false,solver=jacobi",
                             "radiosity:final_gather=false,solver=progressive",
                             "radiosity:final_gather=false,form_factors=hemicube"}) {

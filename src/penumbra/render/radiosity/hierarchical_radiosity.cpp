@@ -115,6 +115,21 @@ HierarchicalRadiosity::Estimate HierarchicalRadiosity::estimate(uint32_t p, uint
   e.straddles = q_behind || p_behind;
   e.f_pq = point_to_node_ff(centroid(p), np, q);
   e.f_qp = point_to_node_ff(centroid(q), nq, p);
+  // The spread of the point form factors over each side's corners and centroid: how far a
+  // transfer taken as uniform over the receiver (and from a source of uniform radiosity) can be
+  // from the true one.
+  float lo = e.f_pq, hi = e.f_pq;
+  for (int i = 0; i < kp; ++i) {
+    const float f = point_to_node_ff(cp[i], np, q);
+    lo = std::min(lo, f), hi = std::max(hi, f);
+  }
+  e.spread = hi - lo;
+  lo = hi = e.f_qp;
+  for (int i = 0; i < kq; ++i) {
+    const float f = point_to_node_ff(cq[i], nq, p);
+    lo = std::min(lo, f), hi = std::max(hi, f);
+  }
+  e.spread = std::max(e.spread, hi - lo);
   return e;
 }
 
@@ -145,22 +160,35 @@ void HierarchicalRadiosity::split(uint32_t n) {
   for (int i = 0; i < 4; ++i) b_.push_back(b_[n]), gather_.push_back(Rgb());
 }
 
+// The oracle's threshold: epsilon times the scene's mean radiosity, the area average of lum(B)
+// over all top-level patches (before the first solve B = E, the mean emitted radiosity). Relative
+// to the brightest emitter instead, a small bright light (the Cornell box's is 150 times the walls'
+// radiosity) let links carry 12 % of a wall's radiosity at epsilon = 1e-3 and left the ceiling
+// 20 % dark.
+void HierarchicalRadiosity::update_threshold() {
+  double sum = 0;
+  for (size_t t = 0; t < patches_.size(); ++t) sum += double(nodes_[t].area) * lum(b_[t]);
+  const double mean = total_area_ > 0 ? sum / total_area_ : 0;
+  eps_abs_ = opt_.epsilon * (mean > 0 ? mean : e_scale_);
+}
+
 // The BF oracle (Hanrahan et al. 1991, section 5): all the link could carry to p is below the
 // threshold.
 bool HierarchicalRadiosity::accept(uint32_t p, uint32_t q, const Estimate& e) const {
   if (e.straddles) return false;
-  const double carried =
-      patches_[nodes_[p].top].rho.max_channel() * lum(b_[q]) * std::max(e.f_pq, e.f_qp);
-  return carried <= eps_abs_;
+  const double rb = patches_[nodes_[p].top].rho.max_channel() * lum(b_[q]);
+  if (rb * std::max(e.f_pq, e.f_qp) <= eps_abs_) return true;  // carries almost nothing
+  return rb * e.spread <= eps_abs_;  // or carries it almost uniformly
 }
 
 // Refine(p, q) of Hanrahan et al. 1991: link p <- q if the oracle accepts or nothing can be split,
-// else split the side that looks larger from the other (q when F_pq >= F_qp) and recurse.
-void HierarchicalRadiosity::refine(uint32_t p, uint32_t q, std::vector<Link>& out) {
+// else split the side that looks larger from the other (q when F_pq >= F_qp) and recurse;
+// `force` splits once whatever the oracle says (a link across a shadow boundary).
+void HierarchicalRadiosity::refine(uint32_t p, uint32_t q, std::vector<Link>& out, bool force) {
   const Estimate e = estimate(p, q);
   if (!e.interacts) return;
   const bool can_p = splittable(p), can_q = splittable(q);
-  if ((!can_p && !can_q) || accept(p, q, e)) {
+  if ((!can_p && !can_q) || (!force && accept(p, q, e))) {
     out.push_back({p, q, -1.f, 0.f});  // form factor evaluated later, in parallel
     return;
   }
@@ -197,18 +225,21 @@ void HierarchicalRadiosity::evaluate_links(std::vector<Link>& links, size_t firs
         const std::vector<float>& sp = patches_[p.top].corners == 4 ? st_quad : st_tri;
         const std::vector<float>& sq = patches_[q.top].corners == 4 ? st_quad : st_tri;
         const Vec3 np = patches_[p.top].normal;
-        double ff = 0, seen = 0;
+        double ff = 0, seen = 0, open = 0;
         for (size_t s = 0; s < count; ++s) {
           const Vec3 x = p.o + p.e1 * sp[2 * s] + p.e2 * sp[2 * s + 1];
           // Pair x with the mirrored point of q, so that rays do not all run parallel.
           const size_t r = count - 1 - s;
           const Vec3 y = q.o + q.e1 * sq[2 * r] + q.e2 * sq[2 * r + 1];
           const float v = vis ? vis(x, y) : 1.f;
-          ff += double(point_to_node_ff(x, np, l.source)) * v;
+          const double f = point_to_node_ff(x, np, l.source);
+          ff += f * v;
+          open += f;
           seen += v;
         }
         l.ff = static_cast<float>(ff / double(count));
         l.vis = static_cast<float>(seen / double(count));
+        l.ff_vis = open > 0 ? static_cast<float>(ff / open) : l.vis;
       },
       16);
   if (vis) stats_.visibility_rays += (links.size() - first) * count;
@@ -269,6 +300,7 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
   Timer total;
   HierarchicalRadiosity h;
   h.opt_ = options;
+  h.visibility_ = visibility;
   const size_t k = patches.size();
   // Roots: one node per top-level patch.
   double total_area = 0, e_max = 0;
@@ -294,7 +326,8 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
   }
   h.min_area_ = options.min_area > 0 ? options.min_area : static_cast<float>(total_area * 1e-5);
   h.e_scale_ = e_max > 0 ? e_max : 1.0;
-  h.eps_abs_ = options.epsilon * h.e_scale_;
+  h.total_area_ = total_area;
+  h.update_threshold();
   // A receiver that reflects nothing needs no links, a source that neither emits nor reflects
   // never sends anything: skip both.
   const auto receives = [&](size_t i) { return !h.patches_[i].rho.is_black(); };
@@ -324,6 +357,7 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
     }
     h.stats_.solve_seconds += timer.elapsed_s();
     if (round >= options.refine_rounds) break;
+    h.update_threshold();
     // Re-refine the links that the oracle rejects with the current B (Hanrahan et al. 1991,
     // section 5); kept links keep their form factors.
     timer.reset();
@@ -331,9 +365,15 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
     kept.reserve(h.links_.size());
     for (const Link& l : h.links_) {
       const Estimate e = h.estimate(l.receiver, l.source);
+      // A partly occluded link that carries more than the threshold crosses a shadow boundary:
+      // refine it, whatever the oracle says of its unoccluded form factors.
+      const bool partial = l.vis > 0 && l.vis < 1 &&
+                           h.patches_[h.nodes_[l.receiver].top].rho.max_channel() *
+                                   lum(h.b_[l.source]) * std::max(e.f_pq, e.f_qp) >
+                               h.eps_abs_;
       if ((h.splittable(l.receiver) || h.splittable(l.source)) &&
-          !h.accept(l.receiver, l.source, e))
-        h.refine(l.receiver, l.source, fresh);
+          (partial || !h.accept(l.receiver, l.source, e)))
+        h.refine(l.receiver, l.source, fresh, partial);
       else
         kept.push_back(l);
     }
@@ -364,8 +404,8 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
   return h;
 }
 
-Rgb HierarchicalRadiosity::radiosity_at(uint32_t top, Vec3 x) const {
-  if (top >= patches_.size()) return Rgb();
+uint32_t HierarchicalRadiosity::descend(uint32_t top, Vec3 x, uint32_t path[64],
+                                        int& depth) const {
   // (s, t) of x in the root's frame: least squares on the two edges.
   const Node& r = nodes_[top];
   const Vec3 d = x - r.o;
@@ -381,7 +421,9 @@ Rgb HierarchicalRadiosity::radiosity_at(uint32_t top, Vec3 x) const {
   }
   // Descend to the leaf containing (s, t), mapping it into each child's frame (split's order).
   uint32_t n = top;
-  while (nodes_[n].child != kLeaf) {
+  depth = 0;
+  path[depth++] = n;
+  while (nodes_[n].child != kLeaf && depth < 64) {
     uint32_t i;
     if (quad) {
       i = (s >= 0.5f ? 1u : 0u) + (t >= 0.5f ? 2u : 0u);
@@ -396,8 +438,38 @@ Rgb HierarchicalRadiosity::radiosity_at(uint32_t top, Vec3 x) const {
       i = 3, s = 1 - 2 * s, t = 1 - 2 * t;
     }
     n = nodes_[n].child + i;
+    path[depth++] = n;
   }
-  return b_[n];
+  return n;
+}
+
+Rgb HierarchicalRadiosity::radiosity_at(uint32_t top, Vec3 x) const {
+  if (top >= patches_.size()) return Rgb();
+  uint32_t path[64];
+  int depth = 0;
+  return b_[descend(top, x, path, depth)];
+}
+
+Rgb HierarchicalRadiosity::gathered_at(uint32_t top, Vec3 x) const {
+  if (top >= patches_.size()) return Rgb();
+  uint32_t path[64];
+  int depth = 0;
+  descend(top, x, path, depth);
+  const Vec3 nx = patches_[top].normal;
+  Rgb sum;
+  for (int k = 0; k < depth; ++k) {
+    const uint32_t n = path[k];
+    for (uint32_t l = link_begin_[n]; l < link_begin_[n + 1]; ++l) {
+      const Link& link = links_[l];
+      if (link.ff_vis <= 0) continue;  // occluded from all of the receiver's points
+      float v = 1;
+      // Partly occluded: whether p sees the source's centroid (at shadow boundaries the links
+      // are refined, so the sources there are small).
+      if (link.ff_vis < 1 && visibility_) v = visibility_(x, centroid(link.source));
+      if (v > 0) sum += b_[link.source] * (point_to_node_ff(x, nx, link.source) * v);
+    }
+  }
+  return patches_[top].emission + patches_[top].rho * sum;
 }
 
 std::vector<HierarchicalLeaf> HierarchicalRadiosity::leaves() const {

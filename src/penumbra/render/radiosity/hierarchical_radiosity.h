@@ -17,8 +17,9 @@ namespace penumbra {
 /// Parameters of the hierarchical solve.
 struct HierarchicalOptions {
   /// BF oracle: the link q -> p is accepted when max_channel(rho_p) lum(B_q) max(F_pq, F_qp)
-  /// <= epsilon max lum(E), i.e. when all it can carry is below epsilon of the brightest emitter.
-  float epsilon = 1e-3f;
+  /// <= epsilon mean lum(B), i.e. when all it can carry is below epsilon of the scene's mean
+  /// radiosity (area average over all patches; before the first solve, of the emission).
+  float epsilon = 3e-3f;
   /// A node is split only while its children keep at least this area (0: total area * 1e-5).
   float min_area = 0;
   /// Each new link integrates its form factor at m x m points of the receiver (m = link_grid),
@@ -70,6 +71,14 @@ class HierarchicalRadiosity {
   const std::vector<Rgb>& patch_radiosity() const { return patch_b_; }
   /// Radiosity of top-level patch `top` at the point p on it (that of the leaf containing p).
   Rgb radiosity_at(uint32_t top, Vec3 p) const;
+  /// Radiosity of top-level patch `top` gathered at the point p itself: E + rho times the sum,
+  /// over the links of the leaf containing p and of its ancestors, of the point form factor from
+  /// p to the link's source (times its visibility from p: a ray to the source's centroid where the
+  /// link is partly occluded) times the source's radiosity. The
+  /// leaves' constant B is the mean of this over the leaf; where a leaf gathers from many links
+  /// whose form factors all vary across it the same way (a ceiling lit by the floor), the point
+  /// value keeps that gradient, which the leaf's constant loses.
+  Rgb gathered_at(uint32_t top, Vec3 p) const;
   /// All leaves, patch by patch.
   std::vector<HierarchicalLeaf> leaves() const;
   /// Largest relative leaf change per gather / push-pull iteration, all rounds.
@@ -95,11 +104,15 @@ class HierarchicalRadiosity {
   struct Link {
     uint32_t receiver = 0, source = 0;
     float ff = 0, vis = 0;
+    float ff_vis = 1;  ///< ff over its unoccluded value: the form-factor-weighted visibility
   };
+  /// The leaf of `top` containing p, and the nodes on the way to it (the root first).
+  uint32_t descend(uint32_t top, Vec3 p, uint32_t path[64], int& depth) const;
   /// The oracle's view of a pair.
   struct Estimate {
     bool interacts = false, straddles = false;
     float f_pq = 0, f_qp = 0;
+    float spread = 0;  ///< largest spread of the point form factors over either side's points
   };
 
   Vec3 centroid(uint32_t n) const;
@@ -108,14 +121,16 @@ class HierarchicalRadiosity {
   Estimate estimate(uint32_t p, uint32_t q) const;
   bool splittable(uint32_t n) const;
   void split(uint32_t n);
+  void update_threshold();
   bool accept(uint32_t p, uint32_t q, const Estimate& e) const;
-  void refine(uint32_t p, uint32_t q, std::vector<Link>& out);
+  void refine(uint32_t p, uint32_t q, std::vector<Link>& out, bool force = false);
   void evaluate_links(std::vector<Link>& links, size_t first, const Visibility& vis);
   void index_links();
   double gather_push_pull();
   Rgb push_pull(uint32_t n, Rgb down, double& change);
 
   HierarchicalOptions opt_;
+  Visibility visibility_;  ///< kept for gathered_at
   std::vector<Patch> patches_;
   std::vector<Node> nodes_;  ///< nodes [0, patches) are the roots
   std::vector<Rgb> b_, gather_;
@@ -125,7 +140,8 @@ class HierarchicalRadiosity {
   std::vector<double> changes_;
   HierarchicalStats stats_;
   float min_area_ = 0;
-  double eps_abs_ = 0;  ///< epsilon * max lum(E)
+  double eps_abs_ = 0;  ///< epsilon * the mean lum(B), see update_threshold
+  double total_area_ = 0;
   double e_scale_ = 1;  ///< max lum(E), the normaliser of changes
 };
 

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/render/integrator/direct_lighting.h"
@@ -42,7 +43,6 @@ RadiosityIntegrator::RadiosityIntegrator(const World& world, const ParamList& pa
     : world_(world), light_sampler_(world.lights(), "power") {
   const float diag = length(world.bounds().diagonal());
   const float scale = std::isfinite(diag) && diag > 0.0f ? diag : 1.0f;
-  patch_given_ = params.has("patch");
   patch_ = float(params.get_real("patch", scale / 25.0, 1e-30, 1e30));
   max_elements_ = size_t(params.get_int("max_elements", 200000, 1, 1ll << 32));
   ff_options_.method = check_method(params.get_string("form_factors", "raycast"),
@@ -94,11 +94,8 @@ void RadiosityIntegrator::solve(RenderJob& job) {
   // The mesh, with a warning for every material it cannot represent exactly.
   const Timer mesh_timer;
   std::vector<std::string> warnings;
-  // The hierarchy refines coarse top-level patches itself (each pair of facing top-level
-  // patches costs a link): one element per primitive (a merged triangle pair, a quad) unless the
-  // patch size is given.
-  mesh_ = RadiosityMesh::build(world_, hierarchy_ && !patch_given_ ? kCoarse : patch_,
-                               max_elements_, &warnings);
+  // The display mesh (and, without the hierarchy, the solution's): elements about `patch`.
+  mesh_ = RadiosityMesh::build(world_, patch_, max_elements_, &warnings);
   for (const std::string& w : warnings) job.warn("radiosity: " + w);
   for (const Light* l : world_.lights())
     if (l->kind() != LightKind::kArea) {
@@ -124,9 +121,6 @@ void RadiosityIntegrator::solve(RenderJob& job) {
   }
 
   if (hierarchy_) {
-    job.warn(
-        "radiosity: the hierarchy is experimental: on the Cornell box its solution is up to "
-        "24 % off (docs/radiosity.md); the final gather hides most of it");
     job.report_preprocess("hierarchical radiosity", 0.0);
     const auto visible = [this](Vec3 a, Vec3 b) {
       Ray r;
@@ -137,17 +131,20 @@ void RadiosityIntegrator::solve(RenderJob& job) {
       RayCounter c;
       return world_.occluded(r, c) ? 0.0f : 1.0f;
     };
+    // The hierarchy refines coarse top-level patches itself (each pair of facing top-level
+    // patches costs a link): one per primitive, a merged triangle pair or a quad.
+    const RadiosityMesh top = RadiosityMesh::build(world_, kCoarse, max_elements_);
     HierarchicalOptions ho;
     ho.epsilon = float(epsilon_);
     ho.tolerance = solve_options_.tolerance;
     // Leaves no smaller than a quarter of a patch: where patches touch (a block on the floor)
     // the oracle refines regardless, and leaves of the scene's area x 1e-5 made 7 million links
     // on the Cornell box.
-    if (!patch_given_) ho.min_area = 0.25f * patch_ * patch_;
+    ho.min_area = 0.25f * patch_ * patch_;
     ho.link_grid = link_grid_;
     hr_ = std::make_unique<HierarchicalRadiosity>(
-        HierarchicalRadiosity::solve(el, mesh_.vertices(), visible, ho));
-    b_ = hr_->patch_radiosity();
+        HierarchicalRadiosity::solve(top.elements(), top.vertices(), visible, ho));
+    resample_hierarchy(top);
     const HierarchicalStats& st = hr_->stats();
     report_.solve_seconds = st.seconds;
     report_.links = st.links;
@@ -191,6 +188,22 @@ void RadiosityIntegrator::solve(RenderJob& job) {
   average_corners();
 }
 
+// The display mesh's element radiosity from the hierarchy: gathered at the element's centroid
+// through the links of the leaf there and its ancestors (HierarchicalRadiosity::gathered_at),
+// in the top-level patch of the element's primitive and side. The display then interpolates
+// corners as for the matrix, and the solution can be written and reused like any other.
+void RadiosityIntegrator::resample_hierarchy(const RadiosityMesh& top) {
+  const std::vector<RadiosityElement>& el = mesh_.elements();
+  b_.assign(el.size(), Rgb{});
+  parallel_for(
+      el.size(),
+      [&](size_t e) {
+        const uint32_t t = top.locate(el[e].prim, el[e].centroid, el[e].normal);
+        if (t != UINT32_MAX) b_[e] = hr_->gathered_at(t, el[e].centroid);
+      },
+      64);
+}
+
 void RadiosityIntegrator::average_corners() {
   const std::vector<RadiosityElement>& el = mesh_.elements();
   // Per vertex, the elements that touch it.
@@ -215,7 +228,6 @@ void RadiosityIntegrator::average_corners() {
 }
 
 Rgb RadiosityIntegrator::radiosity_at(uint32_t e, Vec3 p) const {
-  if (hr_) return hr_->radiosity_at(e, p);  // the leaf's (piecewise constant)
   float w[4];
   mesh_.corner_weights(e, p, w);
   Rgb b;

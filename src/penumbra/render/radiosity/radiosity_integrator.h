@@ -35,8 +35,9 @@ struct RadiosityReport {
 /// form factors (ray casting through the world's accelerator, or the hemicube) and solves the
 /// radiosity system (Gauss-Seidel, Jacobi or progressive refinement), or, with `hierarchy`,
 /// solves by hierarchical radiosity with links instead of a matrix (Hanrahan, Salzman,
-/// Aupperle 1991): the top level is then one patch per primitive (unless `patch` is given),
-/// which the hierarchy subdivides where the light changes, and the display shows its leaves. Each
+/// Aupperle 1991): the top level is then one patch per primitive, which the hierarchy subdivides
+/// where the light changes down to leaves of a quarter patch, and the display mesh's elements
+/// take the mean of the leaves over them (so display and saved solutions work alike). Each
 /// element's radiosity is averaged to its corners over the neighbouring elements that face the same
 /// way, so a camera sample sees the Gouraud-interpolated radiosity B(x) / pi of the element it
 /// hits; with `final_gather` (the default) it sees instead the emission, direct light by a shadow
@@ -74,13 +75,13 @@ class RadiosityIntegrator final : public SamplingIntegrator {
   /// The Gouraud-interpolated radiosity of element e at p.
   Rgb radiosity_at(uint32_t e, Vec3 p) const;
   /// Averages element radiosity to the element corners (over neighbours facing the same way).
+  void resample_hierarchy(const RadiosityMesh& top);
   void average_corners();
   /// Radiance reflected (not emitted) by the surface a gather ray reached.
   Rgb gathered(const Ray& ray, RayCounter& counter) const;
 
   const World& world_;
   float patch_;
-  bool patch_given_ = false;
   size_t max_elements_;
   FormFactorOptions ff_options_;
   SolveOptions solve_options_;
