@@ -6,6 +6,7 @@
 #include <numbers>
 #include <set>
 #include <string>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -241,6 +242,75 @@ TEST(RadiosityMesh, LocateClampsPointsOnTheBoundary) {
     ASSERT_LT(e, b.mesh.size());
     EXPECT_EQ(b.mesh.elements()[e].prim, prim);
   }
+}
+
+// Adaptive subdivision, twice (a child split again): every split piece becomes four of a
+// quarter area each, areas still add up, twins still mirror their fronts, midpoints shared by two
+// split neighbours are one vertex, and locate finds every leaf (quads, triangles, sphere chords)
+// from points inside it. Splitting the same lists again from the same build gives the same mesh.
+TEST(RadiosityMesh, SubdivisionSplitsPiecesIntoFourAndLocateFindsTheLeaves) {
+  Built b(mixed_scene(), 0.3f);
+  const double area_before = [&] {
+    double a = 0;
+    for (const RadiosityElement& e : b.mesh.elements()) a += e.area;
+    return a;
+  }();
+  const size_t n0 = b.mesh.size();
+  // No two vertices at the same place, before and after: shared midpoints are welded.
+  const auto duplicates = [](const RadiosityMesh& m) {
+    std::set<std::tuple<float, float, float>> seen;
+    size_t d = 0;
+    for (const Vec3& v : m.vertices()) d += !seen.insert({v.x, v.y, v.z}).second;
+    return d;
+  };
+  EXPECT_EQ(duplicates(b.mesh), 0u);
+  std::vector<uint32_t> first;
+  for (uint32_t f = 0; f < n0; f += 6) first.push_back(f);  // every third piece, all kinds
+  b.mesh.subdivide(first);
+  ASSERT_EQ(b.mesh.size(), n0 + 6 * first.size());
+  std::vector<uint32_t> second;
+  for (uint32_t f = 0; f < b.mesh.size(); f += 10) second.push_back(f);
+  b.mesh.subdivide(second);
+  ASSERT_EQ(b.mesh.size(), n0 + 6 * (first.size() + second.size()));
+  ASSERT_EQ(b.mesh.refinements().size(), 2u);
+
+  const auto& els = b.mesh.elements();
+  double area = 0;
+  for (uint32_t i = 0; i < els.size(); ++i) {
+    const RadiosityElement& e = els[i];
+    area += e.area;
+    ASSERT_EQ(els[e.twin].twin, i);
+    EXPECT_EQ(e.twin, i % 2 == 0 ? i + 1 : i - 1);
+    EXPECT_NEAR(dot(e.normal, els[e.twin].normal), -1.0f, 1e-6f);
+  }
+  EXPECT_NEAR(area, area_before, 1e-4 * area_before);
+  EXPECT_EQ(duplicates(b.mesh), 0u);
+
+  Pcg32 rng(11);
+  for (int trial = 0; trial < 4000; ++trial) {
+    const uint32_t i = rng.next_bounded(uint32_t(els.size()));
+    const RadiosityElement& e = els[i];
+    Vec3 p = point_in(b.mesh, e, rng, 0.15f);
+    if (e.prim == 2) {
+      // Children of a chord triangle are planar; their hits come radially from the sphere.
+      p = Vec3(5, 0, 0) + normalize(p - Vec3(5, 0, 0));
+      if (b.mesh.locate(e.prim, p, e.normal) != i) continue;  // the bow of the chord
+    }
+    ASSERT_EQ(b.mesh.locate(e.prim, p, e.normal), i) << "trial " << trial;
+    ASSERT_EQ(b.mesh.locate(e.prim, p, -e.normal), e.twin) << "trial " << trial;
+  }
+
+  Built again(mixed_scene(), 0.3f);
+  again.mesh.subdivide(first);
+  again.mesh.subdivide(second);
+  ASSERT_EQ(again.mesh.size(), b.mesh.size());
+  for (uint32_t i = 0; i < els.size(); ++i)
+    for (int k = 0; k < els[i].corners; ++k)
+      ASSERT_EQ(again.mesh.vertices()[again.mesh.elements()[i].v[k]],
+                b.mesh.vertices()[els[i].v[k]]);
+  EXPECT_THROW(again.mesh.subdivide({1}), Error);   // a back element
+  EXPECT_THROW(again.mesh.subdivide({0, 0}), Error);  // twice
+  EXPECT_THROW(again.mesh.subdivide({uint32_t(again.mesh.size())}), Error);
 }
 
 // Corner weights sum to 1 and interpolate the corners back to the point, on all element kinds.

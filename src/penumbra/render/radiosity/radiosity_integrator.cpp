@@ -1,5 +1,6 @@
 #include "penumbra/render/radiosity/radiosity_integrator.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -53,6 +54,9 @@ RadiosityIntegrator::RadiosityIntegrator(const World& world, const ParamList& pa
       check_method(params.get_string("solver", "gauss-seidel"), radiosity_solver_names(), "solver");
   solve_options_.tolerance = params.get_real("tolerance", 1e-4, 1e-12, 1.0);
   solve_options_.max_iterations = int(params.get_int("max_iterations", 1000, 1, 1 << 24));
+  adapt_rounds_ = int(params.get_int("adapt", 0, 0, 16));
+  adapt_threshold_ = params.get_real("adapt_threshold", 0.3, 1e-6, 1e6);
+  budget_ = size_t(params.get_int("budget", 16384, 1, 1ll << 32));
   hierarchy_ = params.has("hierarchy") && params.get_flag("hierarchy");
   epsilon_ = params.get_real("epsilon", HierarchicalOptions{}.epsilon, 1e-12, 1.0);
   link_grid_ = int(params.get_int("link_grid", HierarchicalOptions{}.link_grid, 1, 64));
@@ -78,6 +82,9 @@ std::string RadiosityIntegrator::name() const {
     s += ff_options_.method == "raycast" ? fmt::format(",rays={}", ff_options_.rays)
                                          : fmt::format(",resolution={}", ff_options_.resolution);
     s += ",solver=" + solve_options_.method;
+    if (adapt_rounds_ > 0)
+      s += fmt::format(",adapt={},adapt_threshold={:g},budget={}", adapt_rounds_,
+                       adapt_threshold_, budget_);
   }
   s += final_gather_ ? fmt::format(",gather={}", gather_rays_) : ",final_gather=false";
   if (show_elements_) s += ",show=elements";
@@ -90,6 +97,7 @@ void RadiosityIntegrator::preprocess(RenderJob& job) {
 
 void RadiosityIntegrator::solve(RenderJob& job) {
   report_ = {};
+  ff_options_.seed = 0;
   hr_.reset();
   // The mesh, with a warning for every material it cannot represent exactly.
   const Timer mesh_timer;
@@ -109,7 +117,8 @@ void RadiosityIntegrator::solve(RenderJob& job) {
   const std::vector<RadiosityElement>& el = mesh_.elements();
 
   if (!solution_file_.empty()) {
-    corners_ = read_radiosity_solution(solution_file_, mesh_);
+    corners_ = read_radiosity_solution(solution_file_, mesh_, std::max(max_elements_, budget_));
+    report_.elements = mesh_.size();
     b_.assign(el.size(), Rgb{});
     for (size_t e = 0; e < el.size(); ++e) {
       Rgb sum;
@@ -153,40 +162,112 @@ void RadiosityIntegrator::solve(RenderJob& job) {
     report_.iterations = st.iterations;
     report_.residuals = hr_->changes();
   } else {
-    job.report_preprocess("form factors", 0.0);
-    FormFactors ff = compute_form_factors(world_, mesh_, ff_options_);
-    form_factor_diagnostics(mesh_, ff);
-    report_.form_factor_seconds = ff.seconds;
-    report_.matrix_bytes = ff.f.size() * sizeof(float);
-    report_.reciprocity_error = ff.reciprocity_error;
-    report_.min_row_sum = ff.min_row_sum;
-    report_.max_row_sum = ff.max_row_sum;
-    if (job.cancelled()) return;
-    job.report_preprocess("radiosity solve", 0.0);
-    RadiositySystem sys;
-    sys.n = el.size();
-    sys.f = ff.f.data();
-    for (const RadiosityElement& e : el) {
-      sys.rho.push_back(e.rho);
-      sys.emission.push_back(e.emission);
-      sys.area.push_back(e.area);
+    solve_matrix(job);
+    // Adaptive subdivision: split where neighbours differ, then form factors and solve again.
+    for (int round = 0; round < adapt_rounds_ && !job.cancelled(); ++round) {
+      const std::vector<uint32_t> split = adaptive_split();
+      if (split.empty()) break;
+      job.report_preprocess("adaptive subdivision", 0.0);
+      mesh_.subdivide(split);
+      // Fresh rays for every element: the ones kept were chosen for agreeing with their
+      // neighbours, so their old estimates are biased (ray-cast counts are right-skewed, and the
+      // bright outliers are the ones split); with the same rays the floor read 4.5 % dark.
+      ff_options_.seed = round + 1;
+      report_.elements = mesh_.size();
+      report_.round_elements.push_back(mesh_.size());
+      solve_matrix(job);
     }
-    const SolveResult r = solve_radiosity(sys, solve_options_);
-    b_ = r.b;
-    if (!r.ambient.empty())
-      for (size_t i = 0; i < b_.size(); ++i) b_[i] += r.ambient[i];
-    report_.solve_seconds = r.seconds;
-    report_.iterations = r.iterations;
-    report_.residuals = r.residuals;
-    if (!r.converged)
-      job.warn(
-          fmt::format("radiosity: {} did not reach the tolerance {:g} in {} iterations "
-                      "(residual {:g})",
-                      solve_options_.method, solve_options_.tolerance, r.iterations,
-                      r.residuals.empty() ? 0.0 : r.residuals.back()));
   }
   average_corners();
 }
+
+void RadiosityIntegrator::solve_matrix(RenderJob& job) {
+  const std::vector<RadiosityElement>& el = mesh_.elements();
+  job.report_preprocess("form factors", 0.0);
+  FormFactors ff = compute_form_factors(world_, mesh_, ff_options_);
+  form_factor_diagnostics(mesh_, ff);
+  report_.form_factor_seconds += ff.seconds;
+  report_.matrix_bytes = ff.f.size() * sizeof(float);
+  report_.reciprocity_error = ff.reciprocity_error;
+  report_.min_row_sum = ff.min_row_sum;
+  report_.max_row_sum = ff.max_row_sum;
+  if (job.cancelled()) return;
+  job.report_preprocess("radiosity solve", 0.0);
+  RadiositySystem sys;
+  sys.n = el.size();
+  sys.f = ff.f.data();
+  for (const RadiosityElement& e : el) {
+    sys.rho.push_back(e.rho);
+    sys.emission.push_back(e.emission);
+    sys.area.push_back(e.area);
+  }
+  const SolveResult r = solve_radiosity(sys, solve_options_);
+  b_ = r.b;
+  if (!r.ambient.empty())
+    for (size_t i = 0; i < b_.size(); ++i) b_[i] += r.ambient[i];
+  // Ray casting's noise in each element's gathered radiosity, for adaptive_split: rho times the
+  // standard deviation of the mean of `rays` draws of B_j with probabilities F_ij (Poisson).
+  noise_.assign(el.size(), 0.0f);
+  if (ff_options_.method == "raycast" && adapt_rounds_ > 0)
+    parallel_for(el.size(), [&](size_t i) {
+      double m2 = 0;
+      const float* row = ff.f.data() + i * el.size();
+      for (size_t j = 0; j < el.size(); ++j)
+        if (row[j] > 0) m2 += double(row[j]) * double(b_[j].luminance()) * b_[j].luminance();
+      noise_[i] = float(el[i].rho.max_channel() * std::sqrt(m2 / ff_options_.rays));
+    });
+  report_.solve_seconds += r.seconds;
+  report_.iterations = r.iterations;
+  report_.residuals = r.residuals;
+  if (!r.converged)
+    job.warn(
+        fmt::format("radiosity: {} did not reach the tolerance {:g} in {} iterations "
+                    "(residual {:g})",
+                    solve_options_.method, solve_options_.tolerance, r.iterations,
+                    r.residuals.empty() ? 0.0 : r.residuals.back()));
+}
+
+// The pieces to split: those where either side's radiosity differs from a neighbour's (an
+// element of the same shape facing the same way that shares a corner), beyond three standard
+// deviations of ray casting's noise in the two, by more than adapt_threshold times the mean
+// radiosity of the lit, non-emitting elements. Largest
+// difference first, as many as the element budget allows; pieces already at 1/64 of a patch's
+// area stay (a shadow edge differs at every scale).
+std::vector<uint32_t> RadiosityIntegrator::adaptive_split() const {
+  const std::vector<RadiosityElement>& el = mesh_.elements();
+  std::vector<std::vector<uint32_t>> around(mesh_.vertices().size());
+  for (uint32_t e = 0; e < el.size(); ++e)
+    for (int k = 0; k < el[e].corners; ++k) around[el[e].v[k]].push_back(e);
+  double sum = 0, area = 0;
+  for (size_t e = 0; e < el.size(); ++e)
+    if (el[e].emission.is_black() && b_[e].luminance() > 0)
+      sum += double(b_[e].luminance()) * el[e].area, area += el[e].area;
+  if (!(area > 0)) return {};
+  const double threshold = adapt_threshold_ * sum / area;
+  const float min_area = patch_ * patch_ / 64.0f;
+  const auto shape = [&](uint32_t e) { return world_.primitives().origin(el[e].prim).shape; };
+  std::vector<std::pair<float, uint32_t>> candidates;
+  for (uint32_t f = 0; f < el.size(); f += 2) {
+    if (el[f].area < min_area) continue;
+    float g = 0;
+    for (uint32_t side = f; side < f + 2; ++side)
+      for (int k = 0; k < el[side].corners; ++k)
+        for (uint32_t o : around[el[side].v[k]])
+          if (o != side && shape(o) == shape(side) &&
+              dot(el[o].normal, el[side].normal) >= kSmoothCos)
+            g = std::max(g, std::fabs(b_[o].luminance() - b_[side].luminance()) -
+                                3.0f * std::hypot(noise_[o], noise_[side]));
+    if (g > threshold) candidates.emplace_back(-g, f);
+  }
+  std::sort(candidates.begin(), candidates.end());
+  const size_t room = budget_ > el.size() ? (budget_ - el.size()) / 6 : 0;
+  if (candidates.size() > room) candidates.resize(room);
+  std::vector<uint32_t> split;
+  for (const auto& c : candidates) split.push_back(c.second);
+  std::sort(split.begin(), split.end());
+  return split;
+}
+
 
 // The display mesh's element radiosity from the hierarchy: gathered at the element's centroid
 // through the links of the leaf there and its ancestors (HierarchicalRadiosity::gathered_at),

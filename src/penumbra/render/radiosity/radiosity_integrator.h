@@ -29,6 +29,7 @@ struct RadiosityReport {
   std::vector<double> residuals;  ///< per iteration (the hierarchy: per gather the change)
   size_t links = 0, nodes = 0, hierarchy_bytes = 0;  ///< with the hierarchy
   bool loaded = false;                               ///< the solution came from a file
+  std::vector<size_t> round_elements;  ///< elements after each adaptive subdivision
 };
 
 /// The preprocess meshes every surface into patches of about `patch` world units, computes the
@@ -48,7 +49,10 @@ struct RadiosityReport {
 ///
 /// Parameters (defaults): patch [diagonal / 25], max_elements [200000], form_factors [raycast;
 /// hemicube], rays [1024], resolution [64], solver [gauss-seidel; jacobi, progressive],
-/// tolerance [1e-4], max_iterations [1000], hierarchy [false], epsilon [the hierarchy's link
+/// tolerance [1e-4], max_iterations [1000], adapt [0] rounds of adaptive subdivision (split
+/// each piece whose radiosity differs from a neighbour's by more than adapt_threshold [0.3]
+/// times the mean, then form factors and solve again) within budget [16384] elements,
+/// hierarchy [false], epsilon [the hierarchy's link
 /// threshold], final_gather [true], gather [1] rays per sample, solution [a .ply written by
 /// `penumbra radiosity` to reuse instead of solving], show [none; elements: each element flat in
 /// a colour of its own, to see the mesh].
@@ -75,6 +79,8 @@ class RadiosityIntegrator final : public SamplingIntegrator {
   /// The Gouraud-interpolated radiosity of element e at p.
   Rgb radiosity_at(uint32_t e, Vec3 p) const;
   /// Averages element radiosity to the element corners (over neighbours facing the same way).
+  void solve_matrix(RenderJob& job);
+  std::vector<uint32_t> adaptive_split() const;
   void resample_hierarchy(const RadiosityMesh& top);
   void average_corners();
   /// Radiance reflected (not emitted) by the surface a gather ray reached.
@@ -86,6 +92,10 @@ class RadiosityIntegrator final : public SamplingIntegrator {
   FormFactorOptions ff_options_;
   SolveOptions solve_options_;
   bool hierarchy_;
+  int adapt_rounds_ = 0;
+  double adapt_threshold_ = 0.3;
+  size_t budget_ = 16384;
+  std::vector<float> noise_;  ///< per element: ray casting's standard deviation of B
   double epsilon_;
   int link_grid_;
   bool final_gather_;

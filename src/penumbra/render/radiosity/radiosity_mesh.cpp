@@ -98,18 +98,18 @@ class VertexWelder {
         for (int dz = -1; dz <= 1; ++dz) {
           const auto it = map_.find(key(k[0] + dx, k[1] + dy, k[2] + dz));
           if (it == map_.end()) continue;
-          const Vec3 d = abs(vertices_[it->second] - p);
-          if (max_component(d) <= q_) return it->second;
+          for (const uint32_t v : it->second)
+            if (max_component(abs(vertices_[v] - p)) <= q_) return v;
         }
     const auto index = static_cast<uint32_t>(vertices_.size());
     vertices_.push_back(p);
-    map_.emplace(key(k[0], k[1], k[2]), index);
+    map_[key(k[0], k[1], k[2])].push_back(index);
     return index;
   }
 
  private:
-  /// Hash of the cell (a collision only costs a distance test: the map keeps one vertex per key
-  /// and the exact test decides).
+  /// Hash of the cell (a collision only costs distance tests: the map keeps every vertex of a
+  /// key and the exact test decides; keeping only the first lost 40 % of a sphere's welds).
   static uint64_t key(int64_t x, int64_t y, int64_t z) {
     return uint64_t(x) * 0x9e3779b97f4a7c15ull ^ uint64_t(y) * 0xc2b2ae3d27d4eb4full ^
            uint64_t(z) * 0x165667b19e3779f9ull;
@@ -117,7 +117,7 @@ class VertexWelder {
 
   std::vector<Vec3>& vertices_;
   float q_;
-  std::unordered_map<uint64_t, uint32_t> map_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> map_;
 };
 
 /// Solves p = o + u e1 + v e2 in the least-squares sense (p projected onto the plane).
@@ -392,7 +392,8 @@ uint32_t RadiosityMesh::locate(uint32_t prim, Vec3 p, Vec3 towards) const {
       break;
     }
   }
-  const uint32_t e = g.first + 2 * piece;
+  const uint32_t e = pieces_.empty() ? g.first + 2 * piece
+                                     : pieces_[descend(g.first / 2 + piece, p)].element;
   // The side: for a sphere by its true normal at p, not the chord element's, which points the
   // other way for grazing directions (0.1 % of the hits inside a closed sphere went to the
   // outer twins).
@@ -400,6 +401,27 @@ uint32_t RadiosityMesh::locate(uint32_t prim, Vec3 p, Vec3 towards) const {
                      ? (p - frame[0]) * (dot(elements_[e].normal, p - frame[0]) >= 0 ? 1.0f : -1.0f)
                      : elements_[e].normal;
   return dot(n, towards) >= 0 ? e : e + 1;
+}
+
+uint32_t RadiosityMesh::descend(uint32_t piece, Vec3 p) const {
+  // The children's order of subdivide: parallelograms by (s >= 1/2) + 2 (t >= 1/2); triangles
+  // the corners at o, o + e1 / 2, o + e2 / 2, then the inverted middle one.
+  while (pieces_[piece].child != UINT32_MAX) {
+    const Piece& n = pieces_[piece];
+    double s, t;
+    plane_coordinates(p, n.o, n.e1, n.e2, s, t);
+    uint32_t i;
+    if (n.corners == 4)
+      i = (s >= 0.5 ? 1u : 0u) + (t >= 0.5 ? 2u : 0u);
+    else if (s >= 0.5)
+      i = 1;
+    else if (t >= 0.5)
+      i = 2;
+    else
+      i = s + t < 0.5 ? 0u : 3u;
+    piece = n.child + i;
+  }
+  return piece;
 }
 
 void RadiosityMesh::corner_weights(uint32_t e, Vec3 p, float w[4]) const {

@@ -4,6 +4,7 @@
 /// 1993, "Radiosity and Realistic Image Synthesis", chapter 8).
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "penumbra/core/color.h"
@@ -72,6 +73,18 @@ class RadiosityMesh {
   /// triangle, bilinear for a parallelogram; they sum to 1), for Gouraud shading.
   void corner_weights(uint32_t e, Vec3 p, float w[4]) const;
 
+  /// Adaptive subdivision: splits each piece whose front element is listed (even indices, each
+  /// once; the twin goes with it) into four from its edge midpoints, a parallelogram into four
+  /// parallelograms, a triangle into three corner triangles and the inverted middle one. Edge
+  /// midpoints are shared with neighbours split in this or an earlier call, so Gouraud corners
+  /// average across them (an unsplit neighbour leaves a T-vertex). Elements are renumbered depth
+  /// first in the order of the original pieces, children in place of their parent, so that a
+  /// mesh built the same way and split by the same lists is the same mesh; `locate` descends to
+  /// the leaf. Throws Error for an index that is odd, out of range or repeated.
+  void subdivide(const std::vector<uint32_t>& front_elements);
+  /// Every subdivide call's list, in order (empty for a mesh as built).
+  const std::vector<std::vector<uint32_t>>& refinements() const { return refinements_; }
+
  private:
   /// How one primitive was cut: its first element and grid, to find an element from a point.
   struct PrimGrid {
@@ -91,6 +104,22 @@ class RadiosityMesh {
   // Filled by build: what locate needs (the world's primitives are not kept).
   std::vector<Vec3> prim_frame_;  ///< per primitive: origin, axis 1, axis 2 (3 entries each);
                                   ///< a sphere: centre, (radius, 0, 0), unused
+
+  /// The subdivision tree, filled by the first subdivide: piece k < base_pieces_ is piece k of
+  /// the mesh as built (front element 2k then); split pieces have 4 consecutive children.
+  struct Piece {
+    Vec3 o, e1, e2;  ///< the front element's corner v0 and edges to v1 and to its last corner
+    uint32_t child = UINT32_MAX;
+    uint32_t element = 0;  ///< front element of a leaf
+    uint8_t corners = 3;
+  };
+  /// The leaf of the tree under piece `piece` containing p.
+  uint32_t descend(uint32_t piece, Vec3 p) const;
+  std::vector<Piece> pieces_;
+  std::vector<uint32_t> element_piece_;  ///< per front element / 2: its leaf piece
+  uint32_t base_pieces_ = 0;
+  std::unordered_map<uint64_t, uint32_t> midpoint_;  ///< edge (vertex pair) -> midpoint vertex
+  std::vector<std::vector<uint32_t>> refinements_;
 };
 
 }  // namespace penumbra

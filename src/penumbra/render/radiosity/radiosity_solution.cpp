@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <numbers>
@@ -57,7 +58,14 @@ void write_radiosity_solution(const std::string& path, const RadiosityMesh& mesh
   const size_t nv = corner_count(mesh);
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment penumbra radiosity solution";
   if (!comment.empty()) out += ": " + comment;
-  out += "\n" + header_body(nv, mesh.size());
+  out += "\n";
+  // The adaptive subdivision, so that a reader can rebuild the same mesh from the scene.
+  for (const std::vector<uint32_t>& round : mesh.refinements()) {
+    out += "comment split";
+    for (const uint32_t f : round) out += fmt::format(" {}", f);
+    out += "\n";
+  }
+  out += header_body(nv, mesh.size());
   for (size_t e = 0; e < mesh.size(); ++e) {
     const RadiosityElement& el = mesh.elements()[e];
     for (int k = 0; k < el.corners; ++k) {
@@ -80,12 +88,12 @@ void write_radiosity_solution(const std::string& path, const RadiosityMesh& mesh
   });
 }
 
-std::vector<Rgb> read_radiosity_solution(const std::string& path, const RadiosityMesh& mesh) {
+std::vector<Rgb> read_radiosity_solution(const std::string& path, RadiosityMesh& mesh,
+                                         size_t max_elements) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw InputError(path, "", "cannot open the radiosity solution");
   // The header, line by line: it must be exactly what write_radiosity_solution writes for this
   // mesh (the comment aside).
-  const size_t nv = corner_count(mesh);
   std::string line;
   int line_no = 0;
   const auto expect = [&](const std::string& want) {
@@ -101,6 +109,33 @@ std::vector<Rgb> read_radiosity_solution(const std::string& path, const Radiosit
   if (!std::getline(f, line) || line.rfind("comment penumbra radiosity solution", 0) != 0)
     throw InputError(path, fmt::format("line {}", line_no),
                      "not a radiosity solution written by `penumbra radiosity`");
+  // Adaptive subdivision rounds: replay them on the mesh as built.
+  while (f.peek() == 'c') {
+    ++line_no;
+    std::getline(f, line);
+    const std::string where = fmt::format("line {}", line_no);
+    if (line.rfind("comment split", 0) != 0)
+      throw InputError(path, where, "expected 'comment split' or 'element vertex'");
+    std::vector<uint32_t> split;
+    const char* c = line.c_str() + 13;
+    while (*c == ' ') {
+      char* end = nullptr;
+      const unsigned long long v = std::strtoull(c + 1, &end, 10);
+      if (end == c + 1 || v > UINT32_MAX || (*end != ' ' && *end != '\0'))
+        throw InputError(path, where, "a split list holds non-negative element numbers");
+      split.push_back(static_cast<uint32_t>(v));
+      c = end;
+    }
+    if (mesh.size() + 6 * split.size() > max_elements)
+      throw InputError(path, where,
+                       fmt::format("the subdivision would exceed {} elements", max_elements));
+    try {
+      mesh.subdivide(split);
+    } catch (const Error& e) {
+      throw InputError(path, where, e.what());
+    }
+  }
+  const size_t nv = corner_count(mesh);
   const std::string body = header_body(nv, mesh.size());
   size_t start = 0;
   while (start < body.size()) {

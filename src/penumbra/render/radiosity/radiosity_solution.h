@@ -16,9 +16,12 @@ void write_radiosity_solution(const std::string& path, const RadiosityMesh& mesh
                               const std::vector<Rgb>& corners, const std::string& comment);
 
 /// Reads a file written by write_radiosity_solution for a mesh built the same way as `mesh`
-/// (same scene and patch size): returns its per-corner radiosity. Throws InputError naming the
-/// file, the byte offset or header line and the problem when the file is not such a solution or
-/// belongs to another mesh (element count or corner positions differ).
-std::vector<Rgb> read_radiosity_solution(const std::string& path, const RadiosityMesh& mesh);
+/// (same scene and patch size): applies the file's adaptive subdivision (its `comment split`
+/// lines) to `mesh`, refusing to go beyond `max_elements`, and returns the per-corner
+/// radiosity. Throws InputError naming the file, the byte offset or header line and the problem
+/// when the file is not such a solution or belongs to another mesh (element count or corner
+/// positions differ).
+std::vector<Rgb> read_radiosity_solution(const std::string& path, RadiosityMesh& mesh,
+                                         size_t max_elements = 200000);
 
 }  // namespace penumbra
