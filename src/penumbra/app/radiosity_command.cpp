@@ -53,9 +53,17 @@ int run_radiosity(const RadiosityArgs& args) {
   if (!args.quiet) {
     const RadiosityReport& r = integrator.report();
     fmt::print(stderr, "{} elements, mesh {}\n", r.elements, format_duration(r.mesh_seconds));
+    if (!r.round_elements.empty()) {
+      std::string rounds;
+      for (const size_t n : r.round_elements) rounds += fmt::format(" {}", n);
+      fmt::print(stderr, "adaptive subdivision: elements after each round:{}\n", rounds);
+    }
     if (r.links > 0)
-      fmt::print(stderr, "hierarchy: {} nodes, {} links, {:.1f} MiB, solve {} ({} iterations)\n",
+      fmt::print(stderr,
+                 "hierarchy: {} nodes, {} links, {:.1f} MiB, {} (linking and link form factors "
+                 "{}, gathers {}, {} iterations)\n",
                  r.nodes, r.links, double(r.hierarchy_bytes) / (1 << 20),
+                 format_duration(r.hierarchy_seconds), format_duration(r.form_factor_seconds),
                  format_duration(r.solve_seconds), r.iterations);
     else
       fmt::print(stderr,

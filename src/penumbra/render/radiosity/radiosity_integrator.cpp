@@ -56,7 +56,7 @@ RadiosityIntegrator::RadiosityIntegrator(const World& world, const ParamList& pa
   solve_options_.max_iterations = int(params.get_int("max_iterations", 1000, 1, 1 << 24));
   adapt_rounds_ = int(params.get_int("adapt", 0, 0, 16));
   adapt_threshold_ = params.get_real("adapt_threshold", 0.3, 1e-6, 1e6);
-  budget_ = size_t(params.get_int("budget", 16384, 1, 1ll << 32));
+  budget_ = size_t(params.get_int("budget", 12000, 1, 1ll << 32));
   hierarchy_ = params.has("hierarchy") && params.get_flag("hierarchy");
   epsilon_ = params.get_real("epsilon", HierarchicalOptions{}.epsilon, 1e-12, 1.0);
   link_grid_ = int(params.get_int("link_grid", HierarchicalOptions{}.link_grid, 1, 64));
@@ -155,7 +155,9 @@ void RadiosityIntegrator::solve(RenderJob& job) {
         HierarchicalRadiosity::solve(top.elements(), top.vertices(), visible, ho));
     resample_hierarchy(top);
     const HierarchicalStats& st = hr_->stats();
-    report_.solve_seconds = st.seconds;
+    report_.form_factor_seconds = st.refine_seconds;  // linking, with the links' form factors
+    report_.solve_seconds = st.solve_seconds;
+    report_.hierarchy_seconds = st.seconds;
     report_.links = st.links;
     report_.nodes = st.nodes;
     report_.hierarchy_bytes = st.memory_bytes;

@@ -28,6 +28,7 @@ struct RadiosityReport {
   int iterations = 0;
   std::vector<double> residuals;  ///< per iteration (the hierarchy: per gather the change)
   size_t links = 0, nodes = 0, hierarchy_bytes = 0;  ///< with the hierarchy
+  double hierarchy_seconds = 0;  ///< the hierarchy's whole solve (linking rounds and gathers)
   bool loaded = false;                               ///< the solution came from a file
   std::vector<size_t> round_elements;  ///< elements after each adaptive subdivision
 };
@@ -51,7 +52,7 @@ struct RadiosityReport {
 /// hemicube], rays [1024], resolution [64], solver [gauss-seidel; jacobi, progressive],
 /// tolerance [1e-4], max_iterations [1000], adapt [0] rounds of adaptive subdivision (split
 /// each piece whose radiosity differs from a neighbour's by more than adapt_threshold [0.3]
-/// times the mean, then form factors and solve again) within budget [16384] elements,
+/// times the mean, then form factors and solve again) within budget [12000] elements,
 /// hierarchy [false], epsilon [the hierarchy's link
 /// threshold], final_gather [true], gather [1] rays per sample, solution [a .ply written by
 /// `penumbra radiosity` to reuse instead of solving], show [none; elements: each element flat in
@@ -94,7 +95,7 @@ class RadiosityIntegrator final : public SamplingIntegrator {
   bool hierarchy_;
   int adapt_rounds_ = 0;
   double adapt_threshold_ = 0.3;
-  size_t budget_ = 16384;
+  size_t budget_ = 12000;
   std::vector<float> noise_;  ///< per element: ray casting's standard deviation of B
   double epsilon_;
   int link_grid_;
