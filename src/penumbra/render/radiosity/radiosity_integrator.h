@@ -28,6 +28,7 @@ struct RadiosityReport {
   int iterations = 0;
   std::vector<double> residuals;  ///< per iteration (the hierarchy: per gather the change)
   size_t links = 0, nodes = 0, hierarchy_bytes = 0;  ///< with the hierarchy
+  size_t top_patches = 0, clusters = 0, leaves = 0;  ///< with the hierarchy
   bool loaded = false;                               ///< the solution came from a file
 };
 
@@ -88,6 +89,7 @@ class RadiosityIntegrator final : public SamplingIntegrator {
   bool hierarchy_;
   double epsilon_;
   int link_grid_;
+  std::string clusters_;  ///< "auto", "true" or "false"
   bool final_gather_;
   bool show_elements_ = false;
   int gather_rays_;
