@@ -23,17 +23,19 @@
 //   rho_max(R) min(B_max(S), sum_S lum(B) A cos / (pi d^2)), sums and maxima over the members
 //   of each side that can face the other (a corner of the other's box in front of its plane;
 //   cos bounded over the cone of directions between the bounding spheres), d the distance
-//   between the two boxes (the first term alone where they touch: a form factor is at most
-//   1). A link is made only when this is below the threshold (epsilon times the mean
-//   radiosity, as for patches), else the side with the larger bounding sphere is split. A
-//   cluster link thus carries less than the Hanrahan et al. threshold, so the point
-//   approximations above err by less than that; pairs of nodes go to the patch oracle.
+//   between the two boxes. A link is made only when this is below the threshold (epsilon
+//   times the mean radiosity, as for patches) and its form factor bound P / (pi d^2) below
+//   kMaxClusterFormFactor (so that a point source is a fair model of the cluster even while
+//   it is dark; boxes that touch never qualify), else the side with the larger bounding
+//   sphere is split; pairs of nodes go to the patch oracle. A cluster link thus carries less
+//   than the threshold of Hanrahan et al., and its point approximations err by less than that.
 // - Push-pull. The members' gathered radiosity joins their quadtrees' (push); a cluster holds
 //   no radiosity of its own, its sources read their members' current B (pull). In a closed
 //   scene of uniform E and rho every link then sends B exactly, and the solution is
 //   E / (1 - rho) up to the form factors' error.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "penumbra/core/error.h"
@@ -47,6 +49,11 @@ namespace {
 constexpr uint8_t kReceives = 1, kSends = 2;
 constexpr uint32_t kExposed = 1u << 31;  // in a link's source sample: see source_samples
 constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+// The largest bound P / (pi d^2) of a cluster link's form factor (P the facing members'
+// projected area bound, d the distance between the boxes): for a flat cluster P is about
+// pi r^2, so (r / d)^2 <= 0.1, and the point source it is taken for is within about 10 % of
+// it.
+constexpr double kMaxClusterFormFactor = 0.1;
 
 // Form factor from a differential area at x (normal nx) to a point source of projected area
 // `pa` at c: cos_x pa / (pi d^2), at most 1.
@@ -134,6 +141,7 @@ HierarchicalRadiosity::SideBound HierarchicalRadiosity::side_bound(uint32_t ref,
     const float b = b_[node].luminance();
     out.facing = true;
     out.flux += double(b) * d.area * cmax;
+    out.area += double(d.area) * cmax;
     out.b_max = std::max(out.b_max, b);
     out.rho_max = std::max(out.rho_max, patches_[top].rho.max_channel());
   };
@@ -185,7 +193,18 @@ HierarchicalRadiosity::ClusterEstimate HierarchicalRadiosity::estimate_cluster(u
   double b = src.b_max;
   if (gap > 0) b = std::min(b, src.flux / (std::numbers::pi * double(gap) * gap));
   e.transport = rcv.rho_max * b;
+  e.form_factor = gap > 0 ? src.area / (std::numbers::pi * double(gap) * gap)
+                          : std::numeric_limits<double>::infinity();
   return e;
+}
+
+// A cluster link is made when it carries less than the threshold and its form factor is at
+// most kMaxClusterFormFactor whatever the radiosity: before the first solve everything but the
+// lights is dark, and dark pairs of touching clusters, linked as points, gave some receivers
+// form factors summing past 1 / rho (the first solve diverged on the Cornell box with every
+// patch clustered).
+bool HierarchicalRadiosity::admissible(const ClusterEstimate& e) const {
+  return e.transport <= eps_abs_ && e.form_factor <= kMaxClusterFormFactor;
 }
 
 // A cluster's self-link becomes the links among its children (Smits et al. 1994).
@@ -208,7 +227,7 @@ void HierarchicalRadiosity::link_refs(uint32_t r, uint32_t s, NewLinks& out) {
   }
   const ClusterEstimate e = estimate_cluster(r, s);
   if (!e.interacts) return;
-  if (e.transport <= eps_abs_) {
+  if (admissible(e)) {
     (is_cluster(r) ? out.clusters : out.nodes).push_back({r, s, -1.f, 0.f});
     return;
   }

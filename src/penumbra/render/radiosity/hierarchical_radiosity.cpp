@@ -323,7 +323,7 @@ void HierarchicalRadiosity::rerefine(NewLinks& kept, NewLinks& fresh) {
   kept.clusters.reserve(cluster_links_.size());
   for (const Link& l : links_) {
     if (is_cluster(l.source)) {
-      if (estimate_cluster(l.receiver, l.source).transport > eps_abs_)
+      if (!admissible(estimate_cluster(l.receiver, l.source)))
         link_refs(l.receiver, l.source, fresh);
       else
         kept.nodes.push_back(l);
@@ -343,7 +343,7 @@ void HierarchicalRadiosity::rerefine(NewLinks& kept, NewLinks& fresh) {
       kept.nodes.push_back(l);
   }
   for (const Link& l : cluster_links_) {
-    if (estimate_cluster(l.receiver, l.source).transport > eps_abs_)
+    if (!admissible(estimate_cluster(l.receiver, l.source)))
       link_refs(l.receiver, l.source, fresh);
     else
       kept.clusters.push_back(l);

@@ -139,14 +139,15 @@ class HierarchicalRadiosity {
   /// The cluster oracle's view of a pair with a cluster at one end or both.
   struct ClusterEstimate {
     bool interacts = false;
-    double transport = 0;  ///< bound on rho_r B_s F_rs
+    double transport = 0;    ///< bound on rho_r B_s F_rs
+    double form_factor = 0;  ///< bound on F_rs
     float radius_r = 0, radius_s = 0;
   };
   /// One side of a pair for the cluster oracle: over its members that can face the other side,
   /// a bound on sum lum(B) A cos, the largest lum(B) and the largest max_channel(rho).
   struct SideBound {
     bool facing = false;
-    double flux = 0;
+    double flux = 0, area = 0;
     float b_max = 0, rho_max = 0;
   };
   /// Where a node or cluster lies, for the cluster oracle.
@@ -186,6 +187,7 @@ class HierarchicalRadiosity {
   bool receives(uint32_t ref) const;
   bool sends(uint32_t ref) const;
   ClusterEstimate estimate_cluster(uint32_t r, uint32_t s) const;
+  bool admissible(const ClusterEstimate& e) const;
   void link_self(uint32_t cluster_ref, NewLinks& out);
   void link_refs(uint32_t r, uint32_t s, NewLinks& out);
   int cluster_samples(uint32_t ref, Vec3 dir, int count, uint32_t* out, float& projected) const;
