@@ -7,7 +7,10 @@
 
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
+#include "penumbra/render/radiosity/radiosity_mesh.h"
 #include "penumbra/render/radiosity/radiosity_solver.h"
+#include "penumbra/render/world.h"
+#include "render_helpers.h"
 
 namespace penumbra {
 namespace {
@@ -420,6 +423,34 @@ TEST(HierarchicalClusters, AgreeWithThePatchHierarchyInACubeWithALight) {
     }
     EXPECT_LT(max_difference(on, off), threshold(on, s, epsilon, 0.6)) << epsilon;
   }
+}
+
+// The Cornell box's 48 top-level patches (thin triangles around the light, blocks standing on
+// the floor), all clustered, linked as the integrator links them. Every round must converge,
+// and the solution agree with the patch hierarchy's within the threshold after
+// interreflection. Measured: 15 iterations in 4 rounds (16 without clusters), 469 cluster
+// links, 0.13 of the threshold; with dark touching clusters linked as points before the first
+// solve, that solve diverged (268 iterations).
+TEST(HierarchicalClusters, ConvergeOnTheCornellBox) {
+  const World world(test::bundled_scene("cornell-box.json"), "bvh");
+  const RadiosityMesh top = RadiosityMesh::build(world, 1e30f, 100000);
+  const auto visible = [&world](Vec3 a, Vec3 b) {
+    Ray r;
+    r.o = a, r.d = b - a, r.tmin = 1e-4f, r.tmax = 1 - 1e-4f;
+    RayCounter c;
+    return world.occluded(r, c) ? 0.f : 1.f;
+  };
+  Scene s;
+  s.patches = top.elements(), s.vertices = top.vertices();
+  const float epsilon = 1e-2f, patch = 80.f;
+  HierarchicalRadiosity h[2];
+  for (int on = 0; on < 2; ++on) {
+    h[on] = HierarchicalRadiosity::solve(s.patches, s.vertices, visible,
+                                         clustered(epsilon, 0.25f * patch * patch, on == 1));
+    EXPECT_LT(h[on].stats().iterations, 15 * h[on].stats().rounds) << on;
+  }
+  EXPECT_GT(h[1].stats().cluster_links, 100u);
+  EXPECT_LT(max_difference(h[0], h[1]), threshold(h[1], s, epsilon, 0.73));
 }
 
 // A closed box of 384 patches, E = 1 and rho = 0.5 everywhere: B = 2. A cluster of uniform B
