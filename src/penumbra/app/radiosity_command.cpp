@@ -56,9 +56,10 @@ int run_radiosity(const RadiosityArgs& args) {
     if (r.links > 0)
       fmt::print(stderr,
                  "hierarchy: {} top-level patches, {} clusters, {} nodes ({} leaves), {} links, "
-                 "{:.1f} MiB, solve {} ({} iterations)\n",
+                 "{:.1f} MiB, solve {} (linking {}, gathering {}: {} iterations)\n",
                  r.top_patches, r.clusters, r.nodes, r.leaves, r.links,
                  double(r.hierarchy_bytes) / (1 << 20), format_duration(r.solve_seconds),
+                 format_duration(r.refine_seconds), format_duration(r.gather_seconds),
                  r.iterations);
     else
       fmt::print(stderr,

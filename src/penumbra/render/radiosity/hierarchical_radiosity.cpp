@@ -317,36 +317,53 @@ double HierarchicalRadiosity::gather_push_pull() {
 }
 
 // Re-refinement (Hanrahan et al. 1991, section 5): the links that the oracle rejects with the
-// current B are refined into `fresh`, the others go to `kept` with their form factors.
+// current B are refined into `fresh`, the others go to `kept` with their form factors. The
+// oracle only reads, so it judges all links in parallel; the refinement, which adds nodes,
+// then runs in link order, as it would alone.
 void HierarchicalRadiosity::rerefine(NewLinks& kept, NewLinks& fresh) {
+  constexpr uint8_t kReject = 1, kPartial = 2;
+  std::vector<uint8_t> verdict(links_.size() + cluster_links_.size(), 0);
+  parallel_for(
+      verdict.size(),
+      [&](size_t i) {
+        const bool node_receiver = i < links_.size();
+        const Link& l = node_receiver ? links_[i] : cluster_links_[i - links_.size()];
+        if (!node_receiver || is_cluster(l.source)) {
+          verdict[i] = admissible(estimate_cluster(l.receiver, l.source)) ? 0 : kReject;
+          return;
+        }
+        const Estimate e = estimate(l.receiver, l.source);
+        // A partly occluded link that carries more than the threshold crosses a shadow
+        // boundary: refine it, whatever the oracle says of its unoccluded form factors.
+        const bool partial = l.vis > 0 && l.vis < 1 &&
+                             patches_[nodes_[l.receiver].top].rho.max_channel() *
+                                     lum(b_[l.source]) * std::max(e.f_pq, e.f_qp) >
+                                 eps_abs_;
+        verdict[i] =
+            uint8_t((accept(l.receiver, l.source, e) ? 0 : kReject) | (partial ? kPartial : 0));
+      },
+      256);
   kept.nodes.reserve(links_.size());
   kept.clusters.reserve(cluster_links_.size());
-  for (const Link& l : links_) {
+  for (size_t i = 0; i < links_.size(); ++i) {
+    const Link& l = links_[i];
     if (is_cluster(l.source)) {
-      if (!admissible(estimate_cluster(l.receiver, l.source)))
+      if (verdict[i] & kReject)
         link_refs(l.receiver, l.source, fresh);
       else
         kept.nodes.push_back(l);
       continue;
     }
-    const Estimate e = estimate(l.receiver, l.source);
-    // A partly occluded link that carries more than the threshold crosses a shadow boundary:
-    // refine it, whatever the oracle says of its unoccluded form factors.
-    const bool partial = l.vis > 0 && l.vis < 1 &&
-                         patches_[nodes_[l.receiver].top].rho.max_channel() * lum(b_[l.source]) *
-                                 std::max(e.f_pq, e.f_qp) >
-                             eps_abs_;
-    if ((splittable(l.receiver) || splittable(l.source)) &&
-        (partial || !accept(l.receiver, l.source, e)))
-      refine(l.receiver, l.source, fresh.nodes, partial);
+    if ((splittable(l.receiver) || splittable(l.source)) && verdict[i] != 0)
+      refine(l.receiver, l.source, fresh.nodes, (verdict[i] & kPartial) != 0);
     else
       kept.nodes.push_back(l);
   }
-  for (const Link& l : cluster_links_) {
-    if (!admissible(estimate_cluster(l.receiver, l.source)))
-      link_refs(l.receiver, l.source, fresh);
+  for (size_t i = 0; i < cluster_links_.size(); ++i) {
+    if (verdict[links_.size() + i] & kReject)
+      link_refs(cluster_links_[i].receiver, cluster_links_[i].source, fresh);
     else
-      kept.clusters.push_back(l);
+      kept.clusters.push_back(cluster_links_[i]);
   }
 }
 

@@ -159,6 +159,8 @@ void RadiosityIntegrator::solve(RenderJob& job) {
     report_.top_patches = st.patches;
     report_.clusters = st.clusters;
     report_.leaves = st.leaves;
+    report_.refine_seconds = st.refine_seconds;
+    report_.gather_seconds = st.solve_seconds;
     report_.iterations = st.iterations;
     report_.residuals = hr_->changes();
   } else {

@@ -29,6 +29,7 @@ struct RadiosityReport {
   std::vector<double> residuals;  ///< per iteration (the hierarchy: per gather the change)
   size_t links = 0, nodes = 0, hierarchy_bytes = 0;  ///< with the hierarchy
   size_t top_patches = 0, clusters = 0, leaves = 0;  ///< with the hierarchy
+  double refine_seconds = 0, gather_seconds = 0;     ///< with the hierarchy: parts of solve
   bool loaded = false;                               ///< the solution came from a file
 };
 
