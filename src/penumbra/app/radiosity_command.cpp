@@ -60,11 +60,12 @@ int run_radiosity(const RadiosityArgs& args) {
     }
     if (r.links > 0)
       fmt::print(stderr,
-                 "hierarchy: {} nodes, {} links, {:.1f} MiB, {} (linking and link form factors "
-                 "{}, gathers {}, {} iterations)\n",
-                 r.nodes, r.links, double(r.hierarchy_bytes) / (1 << 20),
-                 format_duration(r.hierarchy_seconds), format_duration(r.form_factor_seconds),
-                 format_duration(r.solve_seconds), r.iterations);
+                 "hierarchy: {} top-level patches, {} clusters, {} nodes ({} leaves), {} links, "
+                 "{:.1f} MiB, solve {} (linking {}, gathering {}: {} iterations)\n",
+                 r.top_patches, r.clusters, r.nodes, r.leaves, r.links,
+                 double(r.hierarchy_bytes) / (1 << 20), format_duration(r.solve_seconds),
+                 format_duration(r.refine_seconds), format_duration(r.gather_seconds),
+                 r.iterations);
     else
       fmt::print(stderr,
                  "form factors {} ({:.1f} MiB; row sums {:.4f}..{:.4f}, reciprocity error "
@@ -94,7 +95,7 @@ void add_radiosity_command(CLI::App& app) {
   cmd->add_option("-o,--output", args->output, "The solution (.ply)")->required();
   cmd->add_option("--integrator", args->integrator,
                   "radiosity[:params] (patch, form_factors, rays, resolution, solver, tolerance, "
-                  "hierarchy, epsilon; see docs/radiosity.md)");
+                  "hierarchy, epsilon, clusters; see docs/radiosity.md)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
       ->check(CLI::Range(1, 4096));
   cmd->add_flag("-q,--quiet", args->quiet, "No report");

@@ -19,9 +19,11 @@ double lum(Rgb c) {
   return c.luminance();
 }
 
+}  // namespace
+
 // Points of a node's m x m quadrature rule in (s, t): cell centres of a parallelogram, the
 // centroids of the m^2 similar sub-triangles of a triangle.
-void rule_points(int corners, int m, std::vector<float>& st) {
+void HierarchicalRadiosity::rule_points(int corners, int m, std::vector<float>& st) {
   st.clear();
   const float inv = 1.f / float(m);
   for (int i = 0; i < m; ++i) {
@@ -36,8 +38,6 @@ void rule_points(int corners, int m, std::vector<float>& st) {
     }
   }
 }
-
-}  // namespace
 
 Vec3 HierarchicalRadiosity::centroid(uint32_t n) const {
   const Node& d = nodes_[n];
@@ -178,7 +178,7 @@ bool HierarchicalRadiosity::accept(uint32_t p, uint32_t q, const Estimate& e) co
   if (e.straddles) return false;
   const double rb = patches_[nodes_[p].top].rho.max_channel() * lum(b_[q]);
   if (rb * std::max(e.f_pq, e.f_qp) <= eps_abs_) return true;  // carries almost nothing
-  return rb * e.spread <= eps_abs_;  // or carries it almost uniformly
+  return rb * e.spread <= eps_abs_;                            // or carries it almost uniformly
 }
 
 // Refine(p, q) of Hanrahan et al. 1991: link p <- q if the oracle accepts or nothing can be split,
@@ -216,13 +216,15 @@ void HierarchicalRadiosity::evaluate_links(std::vector<Link>& links, size_t firs
   rule_points(3, m, st_tri);
   rule_points(4, m, st_quad);
   const size_t count = size_t(m) * m;
+  allocate_link_data(links, first);
   parallel_for(
       links.size() - first,
       [&](size_t k) {
         Link& l = links[first + k];
         const Node& p = nodes_[l.receiver];
-        const Node& q = nodes_[l.source];
         const std::vector<float>& sp = patches_[p.top].corners == 4 ? st_quad : st_tri;
+        if (is_cluster(l.source)) return evaluate_from_cluster(l, sp, int(count), vis);
+        const Node& q = nodes_[l.source];
         const std::vector<float>& sq = patches_[q.top].corners == 4 ? st_quad : st_tri;
         const Vec3 np = patches_[p.top].normal;
         double ff = 0, seen = 0, open = 0;
@@ -246,13 +248,30 @@ void HierarchicalRadiosity::evaluate_links(std::vector<Link>& links, size_t firs
 }
 
 // Sorts links by receiver (stable: creation order within a receiver, so the sums are the same
-// at any thread count) and indexes them per node.
+// at any thread count) and indexes them per node and per cluster.
 void HierarchicalRadiosity::index_links() {
-  std::stable_sort(links_.begin(), links_.end(),
-                   [](const Link& a, const Link& b) { return a.receiver < b.receiver; });
-  link_begin_.assign(nodes_.size() + 1, 0);
-  for (const Link& l : links_) ++link_begin_[l.receiver + 1];
-  for (size_t i = 0; i < nodes_.size(); ++i) link_begin_[i + 1] += link_begin_[i];
+  const auto by_receiver = [](const Link& a, const Link& b) { return a.receiver < b.receiver; };
+  const auto index = [](const std::vector<Link>& links, size_t n, std::vector<uint32_t>& begin) {
+    begin.assign(n + 1, 0);
+    for (const Link& l : links) ++begin[(l.receiver & ~ClusterTree::kClusterBit) + 1];
+    for (size_t i = 0; i < n; ++i) begin[i + 1] += begin[i];
+  };
+  for (std::vector<Link>* links : {&links_, &cluster_links_})
+    std::stable_sort(links->begin(), links->end(), by_receiver);
+  // Cluster link data in the links' new order, without that of refined links.
+  std::vector<uint32_t> data;
+  data.reserve(link_data_.size());
+  for (std::vector<Link>* links : {&links_, &cluster_links_})
+    for (Link& l : *links) {
+      const size_t words = link_words(l);
+      const uint32_t at = static_cast<uint32_t>(data.size());
+      data.insert(data.end(), link_data_.begin() + l.data, link_data_.begin() + l.data + words);
+      l.data = at;
+    }
+  link_data_ = std::move(data);
+  index(links_, nodes_.size(), link_begin_);
+  index(cluster_links_, tree_.clusters().size(), cluster_link_begin_);
+  cluster_link_b_.assign(cluster_links_.size(), Rgb());
 }
 
 // PushPull of Hanrahan et al. 1991: the gathered radiosity of the ancestors flows down to the
@@ -276,21 +295,76 @@ Rgb HierarchicalRadiosity::push_pull(uint32_t n, Rgb down, double& change) {
 }
 
 // One Jacobi-style iteration: every node gathers over its links from the current B (parallel
-// over nodes), then push-pull per patch tree (parallel over patches: trees are disjoint).
+// over nodes), the top-level patches over their clusters' links, then push-pull per patch tree
+// (parallel over patches: trees are disjoint).
 double HierarchicalRadiosity::gather_push_pull() {
   parallel_for(
       nodes_.size(),
       [&](size_t n) {
         Rgb sum;
-        for (uint32_t l = link_begin_[n]; l < link_begin_[n + 1]; ++l)
-          sum += b_[links_[l].source] * links_[l].ff;
+        for (uint32_t l = link_begin_[n]; l < link_begin_[n + 1]; ++l) {
+          const Link& link = links_[l];
+          sum += link_source_b(link) * link.ff;
+        }
         gather_[n] = patches_[nodes_[n].top].rho * sum;
       },
       256);
+  gather_clusters();
   std::vector<double> change(patches_.size(), 0.0);
   parallel_for(patches_.size(),
                [&](size_t t) { push_pull(static_cast<uint32_t>(t), Rgb(), change[t]); });
   return *std::max_element(change.begin(), change.end()) / e_scale_;
+}
+
+// Re-refinement (Hanrahan et al. 1991, section 5): the links that the oracle rejects with the
+// current B are refined into `fresh`, the others go to `kept` with their form factors. The
+// oracle only reads, so it judges all links in parallel; the refinement, which adds nodes,
+// then runs in link order, as it would alone.
+void HierarchicalRadiosity::rerefine(NewLinks& kept, NewLinks& fresh) {
+  constexpr uint8_t kReject = 1, kPartial = 2;
+  std::vector<uint8_t> verdict(links_.size() + cluster_links_.size(), 0);
+  parallel_for(
+      verdict.size(),
+      [&](size_t i) {
+        const bool node_receiver = i < links_.size();
+        const Link& l = node_receiver ? links_[i] : cluster_links_[i - links_.size()];
+        if (!node_receiver || is_cluster(l.source)) {
+          verdict[i] = admissible(estimate_cluster(l.receiver, l.source)) ? 0 : kReject;
+          return;
+        }
+        const Estimate e = estimate(l.receiver, l.source);
+        // A partly occluded link that carries more than the threshold crosses a shadow
+        // boundary: refine it, whatever the oracle says of its unoccluded form factors.
+        const bool partial = l.vis > 0 && l.vis < 1 &&
+                             patches_[nodes_[l.receiver].top].rho.max_channel() *
+                                     lum(b_[l.source]) * std::max(e.f_pq, e.f_qp) >
+                                 eps_abs_;
+        verdict[i] =
+            uint8_t((accept(l.receiver, l.source, e) ? 0 : kReject) | (partial ? kPartial : 0));
+      },
+      256);
+  kept.nodes.reserve(links_.size());
+  kept.clusters.reserve(cluster_links_.size());
+  for (size_t i = 0; i < links_.size(); ++i) {
+    const Link& l = links_[i];
+    if (is_cluster(l.source)) {
+      if (verdict[i] & kReject)
+        link_refs(l.receiver, l.source, fresh);
+      else
+        kept.nodes.push_back(l);
+      continue;
+    }
+    if ((splittable(l.receiver) || splittable(l.source)) && verdict[i] != 0)
+      refine(l.receiver, l.source, fresh.nodes, (verdict[i] & kPartial) != 0);
+    else
+      kept.nodes.push_back(l);
+  }
+  for (size_t i = 0; i < cluster_links_.size(); ++i) {
+    if (verdict[links_.size() + i] & kReject)
+      link_refs(cluster_links_[i].receiver, cluster_links_[i].source, fresh);
+    else
+      kept.clusters.push_back(cluster_links_[i]);
+  }
 }
 
 HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityElement>& patches,
@@ -327,21 +401,26 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
   h.min_area_ = options.min_area > 0 ? options.min_area : static_cast<float>(total_area * 1e-5);
   h.e_scale_ = e_max > 0 ? e_max : 1.0;
   h.total_area_ = total_area;
+  if (options.clusters && k > options.cluster_min_patches) h.build_clusters();
   h.update_threshold();
-  // A receiver that reflects nothing needs no links, a source that neither emits nor reflects
-  // never sends anything: skip both.
-  const auto receives = [&](size_t i) { return !h.patches_[i].rho.is_black(); };
-  const auto sends = [&](size_t i) {
-    return !h.patches_[i].rho.is_black() || !h.patches_[i].emission.is_black();
-  };
 
-  // Initial linking of every pair of top-level patches, judged by B = E.
+  // Initial linking, judged by B = E: from the root cluster's self-link, or of every pair of
+  // top-level patches (a receiver that reflects nothing needs no links, a source that neither
+  // emits nor reflects never sends anything: both are skipped).
   Timer timer;
-  for (size_t p = 0; p < k; ++p)
-    if (receives(p))
-      for (size_t q = 0; q < k; ++q)
-        if (q != p && sends(q)) h.refine(uint32_t(p), uint32_t(q), h.links_);
+  NewLinks initial;
+  if (!h.tree_.empty()) {
+    h.link_self(ClusterTree::kClusterBit | 0u, initial);
+  } else {
+    for (size_t p = 0; p < k; ++p)
+      if (h.receives(uint32_t(p)))
+        for (size_t q = 0; q < k; ++q)
+          if (q != p && h.sends(uint32_t(q))) h.refine(uint32_t(p), uint32_t(q), initial.nodes);
+  }
+  h.links_ = std::move(initial.nodes);
+  h.cluster_links_ = std::move(initial.clusters);
   h.evaluate_links(h.links_, 0, visibility);
+  h.evaluate_cluster_links(h.cluster_links_, 0, visibility);
   h.index_links();
   h.stats_.refine_seconds += timer.elapsed_s();
   h.stats_.rounds = 1;
@@ -358,31 +437,18 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
     h.stats_.solve_seconds += timer.elapsed_s();
     if (round >= options.refine_rounds) break;
     h.update_threshold();
-    // Re-refine the links that the oracle rejects with the current B (Hanrahan et al. 1991,
-    // section 5); kept links keep their form factors.
     timer.reset();
-    std::vector<Link> kept, fresh;
-    kept.reserve(h.links_.size());
-    for (const Link& l : h.links_) {
-      const Estimate e = h.estimate(l.receiver, l.source);
-      // A partly occluded link that carries more than the threshold crosses a shadow boundary:
-      // refine it, whatever the oracle says of its unoccluded form factors.
-      const bool partial = l.vis > 0 && l.vis < 1 &&
-                           h.patches_[h.nodes_[l.receiver].top].rho.max_channel() *
-                                   lum(h.b_[l.source]) * std::max(e.f_pq, e.f_qp) >
-                               h.eps_abs_;
-      if ((h.splittable(l.receiver) || h.splittable(l.source)) &&
-          (partial || !h.accept(l.receiver, l.source, e)))
-        h.refine(l.receiver, l.source, fresh, partial);
-      else
-        kept.push_back(l);
-    }
-    const bool changed = !fresh.empty();
+    NewLinks kept, fresh;
+    h.rerefine(kept, fresh);
+    const bool changed = !fresh.nodes.empty() || !fresh.clusters.empty();
     if (changed) {
-      const size_t first = kept.size();
-      kept.insert(kept.end(), fresh.begin(), fresh.end());
-      h.evaluate_links(kept, first, visibility);
-      h.links_ = std::move(kept);
+      const size_t first = kept.nodes.size(), first_cluster = kept.clusters.size();
+      kept.nodes.insert(kept.nodes.end(), fresh.nodes.begin(), fresh.nodes.end());
+      kept.clusters.insert(kept.clusters.end(), fresh.clusters.begin(), fresh.clusters.end());
+      h.evaluate_links(kept.nodes, first, visibility);
+      h.evaluate_cluster_links(kept.clusters, first_cluster, visibility);
+      h.links_ = std::move(kept.nodes);
+      h.cluster_links_ = std::move(kept.clusters);
       h.index_links();
       ++h.stats_.rounds;
     }
@@ -392,20 +458,27 @@ HierarchicalRadiosity HierarchicalRadiosity::solve(const std::vector<RadiosityEl
 
   h.patch_b_.assign(h.b_.begin(), h.b_.begin() + static_cast<std::ptrdiff_t>(k));
   HierarchicalStats& s = h.stats_;
+  s.patches = k;
+  s.clusters = h.tree_.clusters().size();
   s.nodes = h.nodes_.size();
   s.leaves = static_cast<size_t>(std::count_if(h.nodes_.begin(), h.nodes_.end(),
                                                [](const Node& n) { return n.child == kLeaf; }));
-  s.links = h.links_.size();
+  s.links = h.links_.size() + h.cluster_links_.size();
+  s.cluster_links = h.cluster_links_.size() +
+                    size_t(std::count_if(h.links_.begin(), h.links_.end(),
+                                         [](const Link& l) { return is_cluster(l.source); }));
   s.memory_bytes =
       h.nodes_.capacity() * sizeof(Node) + (h.b_.capacity() + h.gather_.capacity()) * sizeof(Rgb) +
-      h.links_.capacity() * sizeof(Link) + h.link_begin_.capacity() * sizeof(uint32_t) +
-      h.patches_.capacity() * sizeof(Patch);
+      (h.links_.capacity() + h.cluster_links_.capacity()) * sizeof(Link) +
+      (h.link_begin_.capacity() + h.cluster_link_begin_.capacity()) * sizeof(uint32_t) +
+      h.patches_.capacity() * sizeof(Patch) + h.tree_.memory_bytes() +
+      h.cluster_link_b_.capacity() * sizeof(Rgb) + h.cluster_flags_.capacity() +
+      h.link_data_.capacity() * sizeof(uint32_t);
   s.seconds = total.elapsed_s();
   return h;
 }
 
-uint32_t HierarchicalRadiosity::descend(uint32_t top, Vec3 x, uint32_t path[64],
-                                        int& depth) const {
+uint32_t HierarchicalRadiosity::descend(uint32_t top, Vec3 x, uint32_t path[64], int& depth) const {
   // (s, t) of x in the root's frame: least squares on the two edges.
   const Node& r = nodes_[top];
   const Vec3 d = x - r.o;
@@ -462,6 +535,10 @@ Rgb HierarchicalRadiosity::gathered_at(uint32_t top, Vec3 x) const {
     for (uint32_t l = link_begin_[n]; l < link_begin_[n + 1]; ++l) {
       const Link& link = links_[l];
       if (link.ff_vis <= 0) continue;  // occluded from all of the receiver's points
+      if (is_cluster(link.source)) {
+        sum += link_source_b(link) * (member_ff(link, x, nx) * link.ff_vis);
+        continue;
+      }
       float v = 1;
       // Partly occluded: whether p sees the source's centroid (at shadow boundaries the links
       // are refined, so the sources there are small).
@@ -469,6 +546,13 @@ Rgb HierarchicalRadiosity::gathered_at(uint32_t top, Vec3 x) const {
       if (v > 0) sum += b_[link.source] * (point_to_node_ff(x, nx, link.source) * v);
     }
   }
+  // The links of the clusters containing the patch.
+  if (!tree_.empty())
+    for (uint32_t c = tree_.parent_of(top); c != ClusterTree::kNone; c = tree_.clusters()[c].parent)
+      for (uint32_t l = cluster_link_begin_[c]; l < cluster_link_begin_[c + 1]; ++l) {
+        const Link& link = cluster_links_[l];
+        if (member_visible(link, c, top)) sum += link_source_b(link) * member_ff(link, x, nx);
+      }
   return patches_[top].emission + patches_[top].rho * sum;
 }
 

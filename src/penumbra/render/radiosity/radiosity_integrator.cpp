@@ -60,6 +60,8 @@ RadiosityIntegrator::RadiosityIntegrator(const World& world, const ParamList& pa
   hierarchy_ = params.has("hierarchy") && params.get_flag("hierarchy");
   epsilon_ = params.get_real("epsilon", HierarchicalOptions{}.epsilon, 1e-12, 1.0);
   link_grid_ = int(params.get_int("link_grid", HierarchicalOptions{}.link_grid, 1, 64));
+  clusters_ = check_method(params.get_string("clusters", "auto"), {"auto", "true", "false"},
+                           "clusters setting");
   final_gather_ = params.has("final_gather") ? params.get_flag("final_gather") : true;
   gather_rays_ = int(params.get_int("gather", 1, 1, 1 << 16));
   solution_file_ = params.get_string("solution", "");
@@ -77,6 +79,7 @@ std::string RadiosityIntegrator::name() const {
   if (!solution_file_.empty()) return s + ",solution=" + solution_file_;
   if (hierarchy_) {
     s += fmt::format(",hierarchy,epsilon={:g}", epsilon_);
+    if (clusters_ != "auto") s += ",clusters=" + clusters_;
   } else {
     s += ",form_factors=" + ff_options_.method;
     s += ff_options_.method == "raycast" ? fmt::format(",rays={}", ff_options_.rays)
@@ -151,16 +154,22 @@ void RadiosityIntegrator::solve(RenderJob& job) {
     // on the Cornell box.
     ho.min_area = 0.25f * patch_ * patch_;
     ho.link_grid = link_grid_;
+    // Clustering: by default above HierarchicalOptions::cluster_min_patches top-level patches.
+    ho.clusters = clusters_ != "false";
+    if (clusters_ == "true") ho.cluster_min_patches = 0;
     hr_ = std::make_unique<HierarchicalRadiosity>(
         HierarchicalRadiosity::solve(top.elements(), top.vertices(), visible, ho));
     resample_hierarchy(top);
     const HierarchicalStats& st = hr_->stats();
-    report_.form_factor_seconds = st.refine_seconds;  // linking, with the links' form factors
-    report_.solve_seconds = st.solve_seconds;
-    report_.hierarchy_seconds = st.seconds;
+    report_.solve_seconds = st.seconds;
     report_.links = st.links;
     report_.nodes = st.nodes;
     report_.hierarchy_bytes = st.memory_bytes;
+    report_.top_patches = st.patches;
+    report_.clusters = st.clusters;
+    report_.leaves = st.leaves;
+    report_.refine_seconds = st.refine_seconds;
+    report_.gather_seconds = st.solve_seconds;
     report_.iterations = st.iterations;
     report_.residuals = hr_->changes();
   } else {

@@ -28,7 +28,8 @@ struct RadiosityReport {
   int iterations = 0;
   std::vector<double> residuals;  ///< per iteration (the hierarchy: per gather the change)
   size_t links = 0, nodes = 0, hierarchy_bytes = 0;  ///< with the hierarchy
-  double hierarchy_seconds = 0;  ///< the hierarchy's whole solve (linking rounds and gathers)
+  size_t top_patches = 0, clusters = 0, leaves = 0;  ///< with the hierarchy
+  double refine_seconds = 0, gather_seconds = 0;     ///< with the hierarchy: parts of solve
   bool loaded = false;                               ///< the solution came from a file
   std::vector<size_t> round_elements;  ///< elements after each adaptive subdivision
 };
@@ -99,6 +100,7 @@ class RadiosityIntegrator final : public SamplingIntegrator {
   std::vector<float> noise_;  ///< per element: ray casting's standard deviation of B
   double epsilon_;
   int link_grid_;
+  std::string clusters_;  ///< "auto", "true" or "false"
   bool final_gather_;
   bool show_elements_ = false;
   int gather_rays_;
