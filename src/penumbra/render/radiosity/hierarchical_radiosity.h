@@ -6,7 +6,6 @@
 /// Algorithm for Radiosity in Complex Environments") a binary cluster tree sits above the
 /// top-level patches, linking starts from the root cluster, and distant groups of patches
 /// exchange energy through single links, so that the links grow about linearly with the patches.
-#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
