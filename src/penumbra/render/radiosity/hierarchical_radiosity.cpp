@@ -176,9 +176,14 @@ void HierarchicalRadiosity::update_threshold() {
 // threshold.
 bool HierarchicalRadiosity::accept(uint32_t p, uint32_t q, const Estimate& e) const {
   if (e.straddles) return false;
-  const double rb = patches_[nodes_[p].top].rho.max_channel() * lum(b_[q]);
-  if (rb * std::max(e.f_pq, e.f_qp) <= eps_abs_) return true;  // carries almost nothing
-  return rb * e.spread <= eps_abs_;                            // or carries it almost uniformly
+  if (carried(p, q, e) <= eps_abs_) return true;  // carries almost nothing
+  return patches_[nodes_[p].top].rho.max_channel() * lum(b_[q]) * e.spread <=
+         eps_abs_;  // or carries it almost uniformly
+}
+
+// The most the link q -> p can carry to p (unoccluded): rho_p lum(B_q) max(F_pq, F_qp).
+double HierarchicalRadiosity::carried(uint32_t p, uint32_t q, const Estimate& e) const {
+  return patches_[nodes_[p].top].rho.max_channel() * lum(b_[q]) * std::max(e.f_pq, e.f_qp);
 }
 
 // Refine(p, q) of Hanrahan et al. 1991: link p <- q if the oracle accepts or nothing can be split,
@@ -335,10 +340,8 @@ void HierarchicalRadiosity::rerefine(NewLinks& kept, NewLinks& fresh) {
         const Estimate e = estimate(l.receiver, l.source);
         // A partly occluded link that carries more than the threshold crosses a shadow
         // boundary: refine it, whatever the oracle says of its unoccluded form factors.
-        const bool partial = l.vis > 0 && l.vis < 1 &&
-                             patches_[nodes_[l.receiver].top].rho.max_channel() *
-                                     lum(b_[l.source]) * std::max(e.f_pq, e.f_qp) >
-                                 eps_abs_;
+        const bool partial =
+            l.vis > 0 && l.vis < 1 && carried(l.receiver, l.source, e) > eps_abs_;
         verdict[i] =
             uint8_t((accept(l.receiver, l.source, e) ? 0 : kReject) | (partial ? kPartial : 0));
       },

@@ -167,6 +167,7 @@ class HierarchicalRadiosity {
   void split(uint32_t n);
   void update_threshold();
   bool accept(uint32_t p, uint32_t q, const Estimate& e) const;
+  double carried(uint32_t p, uint32_t q, const Estimate& e) const;
   void refine(uint32_t p, uint32_t q, std::vector<Link>& out, bool force = false);
   void evaluate_links(std::vector<Link>& links, size_t first, const Visibility& vis);
   void index_links();

@@ -241,14 +241,12 @@ void RadiosityIntegrator::solve_matrix(RenderJob& job) {
 // The pieces to split: those where either side's radiosity differs from a neighbour's (an
 // element of the same shape facing the same way that shares a corner), beyond three standard
 // deviations of ray casting's noise in the two, by more than adapt_threshold times the mean
-// radiosity of the lit, non-emitting elements. Largest
-// difference first, as many as the element budget allows; pieces already at 1/64 of a patch's
-// area stay (a shadow edge differs at every scale).
+// radiosity of the lit, non-emitting elements. Largest difference first, as many as the element
+// budget allows; pieces already at 1/64 of a patch's area stay (a shadow edge differs at every
+// scale).
 std::vector<uint32_t> RadiosityIntegrator::adaptive_split() const {
   const std::vector<RadiosityElement>& el = mesh_.elements();
-  std::vector<std::vector<uint32_t>> around(mesh_.vertices().size());
-  for (uint32_t e = 0; e < el.size(); ++e)
-    for (int k = 0; k < el[e].corners; ++k) around[el[e].v[k]].push_back(e);
+  const std::vector<std::vector<uint32_t>> around = elements_around_vertices();
   double sum = 0, area = 0;
   for (size_t e = 0; e < el.size(); ++e)
     if (el[e].emission.is_black() && b_[e].luminance() > 0)
@@ -256,7 +254,6 @@ std::vector<uint32_t> RadiosityIntegrator::adaptive_split() const {
   if (!(area > 0)) return {};
   const double threshold = adapt_threshold_ * sum / area;
   const float min_area = patch_ * patch_ / 64.0f;
-  const auto shape = [&](uint32_t e) { return world_.primitives().origin(el[e].prim).shape; };
   std::vector<std::pair<float, uint32_t>> candidates;
   for (uint32_t f = 0; f < el.size(); f += 2) {
     if (el[f].area < min_area) continue;
@@ -264,8 +261,7 @@ std::vector<uint32_t> RadiosityIntegrator::adaptive_split() const {
     for (uint32_t side = f; side < f + 2; ++side)
       for (int k = 0; k < el[side].corners; ++k)
         for (uint32_t o : around[el[side].v[k]])
-          if (o != side && shape(o) == shape(side) &&
-              dot(el[o].normal, el[side].normal) >= kSmoothCos)
+          if (o != side && smooth_neighbours(o, side))
             g = std::max(g, std::fabs(b_[o].luminance() - b_[side].luminance()) -
                                 3.0f * std::hypot(noise_[o], noise_[side]));
     if (g > threshold) candidates.emplace_back(-g, f);
@@ -278,7 +274,6 @@ std::vector<uint32_t> RadiosityIntegrator::adaptive_split() const {
   std::sort(split.begin(), split.end());
   return split;
 }
-
 
 // The display mesh's element radiosity from the hierarchy: gathered at the element's centroid
 // through the links of the leaf there and its ancestors (HierarchicalRadiosity::gathered_at),
@@ -296,22 +291,34 @@ void RadiosityIntegrator::resample_hierarchy(const RadiosityMesh& top) {
       64);
 }
 
-void RadiosityIntegrator::average_corners() {
+std::vector<std::vector<uint32_t>> RadiosityIntegrator::elements_around_vertices() const {
   const std::vector<RadiosityElement>& el = mesh_.elements();
-  // Per vertex, the elements that touch it.
   std::vector<std::vector<uint32_t>> around(mesh_.vertices().size());
   for (uint32_t e = 0; e < el.size(); ++e)
     for (int k = 0; k < el[e].corners; ++k) around[el[e].v[k]].push_back(e);
+  return around;
+}
+
+// Only within a shape (a light's radiosity must not bleed into the ceiling around it), and only
+// elements facing the same way (creases stay sharp).
+bool RadiosityIntegrator::smooth_neighbours(uint32_t a, uint32_t b) const {
+  const std::vector<RadiosityElement>& el = mesh_.elements();
+  const PrimitiveSet& prims = world_.primitives();
+  return dot(el[a].normal, el[b].normal) >= kSmoothCos &&
+         prims.origin(el[a].prim).shape == prims.origin(el[b].prim).shape;
+}
+
+void RadiosityIntegrator::average_corners() {
+  const std::vector<RadiosityElement>& el = mesh_.elements();
+  const std::vector<std::vector<uint32_t>> around = elements_around_vertices();
   corners_.assign(4 * el.size(), Rgb{});
-  // Only within a shape: a light's radiosity must not bleed into the ceiling around it.
-  const auto shape = [&](uint32_t e) { return world_.primitives().origin(el[e].prim).shape; };
   for (uint32_t e = 0; e < el.size(); ++e)
     for (int k = 0; k < el[e].corners; ++k) {
       // Area-weighted over the neighbours facing the same way.
       Rgb sum;
       float area = 0.0f;
       for (uint32_t o : around[el[e].v[k]])
-        if (dot(el[o].normal, el[e].normal) >= kSmoothCos && shape(o) == shape(e)) {
+        if (smooth_neighbours(o, e)) {
           sum += b_[o] * el[o].area;
           area += el[o].area;
         }

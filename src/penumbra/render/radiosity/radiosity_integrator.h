@@ -84,6 +84,10 @@ class RadiosityIntegrator final : public SamplingIntegrator {
   void solve_matrix(RenderJob& job);
   std::vector<uint32_t> adaptive_split() const;
   void resample_hierarchy(const RadiosityMesh& top);
+  /// Per vertex of the mesh, the elements that have it as a corner.
+  std::vector<std::vector<uint32_t>> elements_around_vertices() const;
+  /// Whether elements a and b are smoothed across at a shared corner.
+  bool smooth_neighbours(uint32_t a, uint32_t b) const;
   void average_corners();
   /// Radiance reflected (not emitted) by the surface a gather ray reached.
   Rgb gathered(const Ray& ray, RayCounter& counter) const;
