@@ -105,14 +105,22 @@ TEST(PathFurnace, ClosedEmissiveEnclosureReachesEOverOneMinusRho) {
                                                   strategy, shapes));
       double sum = 0, var = 0;
       for (int y = 0; y < 8; ++y)
-        for (int x = 0; x < 8; ++x) {
-          const float l = r.mean.at(x, y).r, v = r.variance.at(x, y).r;
-          EXPECT_LE(std::fabs(l - 1.25f), 4.5f * std::sqrt(v)) << "pixel " << x << "," << y;
-          sum += l;
-          var += v;
-        }
+        for (int x = 0; x < 8; ++x) sum += r.mean.at(x, y).r, var += r.variance.at(x, y).r;
       EXPECT_LE(std::fabs(sum / 64.0 - 1.25), 4.0 * std::sqrt(var) / 64.0);
-      EXPECT_GT(var, 0.0);  // the estimate is noisy: the bound above means something
+      EXPECT_GT(var, 0.0);  // the estimate is noisy: the bounds mean something
+      // Every 2x2 block (512 paths) against the pooled variance of the mean: the pixels see
+      // statistically alike paths (their variances differ by under 30 %), while one pixel's
+      // own variance estimate from 128 paths, whose Russian-roulette tails are heavy, is often
+      // far too small where the rare long paths happened not to be drawn (measured over 40
+      // seeds: |z| > 4 for 0.3 % of pixels by their own variance; 2x2 blocks by the pooled
+      // variance: std(z) 0.99-1.02, max |z| 3.5 of 640).
+      const double block_sigma = std::sqrt(var / 64.0 / 4.0);
+      for (int y = 0; y < 8; y += 2)
+        for (int x = 0; x < 8; x += 2) {
+          const double l = (double(r.mean.at(x, y).r) + r.mean.at(x + 1, y).r +
+                            r.mean.at(x, y + 1).r + r.mean.at(x + 1, y + 1).r) / 4.0;
+          EXPECT_LE(std::fabs(l - 1.25), 4.5 * block_sigma) << "block " << x << "," << y;
+        }
     }
   }
 }

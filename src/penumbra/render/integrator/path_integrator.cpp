@@ -49,6 +49,7 @@ PathIntegrator::PathIntegrator(const World& world, const ParamList& params, int 
       strategy_(parse_strategy(params.get_string("strategy", "mis"))),
       max_depth_(static_cast<int>(params.get_int("max_depth", max_depth, -1, 1 << 30))),
       rr_depth_(static_cast<int>(params.get_int("rr_depth", 3, 0, 1 << 30))),
+      rr_exponent_(static_cast<float>(params.get_real("rr_exponent", 0.5, 1e-3, 1.0))),
       light_sampler_(sampled_lights(world, strategy_),
                      params.get_string("light_sampler", "power")) {
   params.check_all_used();
@@ -58,6 +59,7 @@ std::string PathIntegrator::name() const {
   std::string s = fmt::format("path:strategy={}", strategy_name(strategy_));
   if (max_depth_ >= 0) s += fmt::format(",max_depth={}", max_depth_);
   if (rr_depth_ != 3) s += fmt::format(",rr_depth={}", rr_depth_);
+  if (rr_exponent_ != 0.5f) s += fmt::format(",rr_exponent={}", rr_exponent_);
   if (light_sampler_.strategy() != "power") s += ",light_sampler=" + light_sampler_.strategy();
   return s;
 }
@@ -149,8 +151,14 @@ Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter
     if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
     ray = si.spawn_ray(wi, ray.time);
 
-    // Russian roulette on the throughput, undoing refraction's radiance scaling (pbrt-v4).
-    const float rr = beta.max_channel() * eta_scale;
+    // Russian roulette on the throughput, undoing refraction's radiance scaling (pbrt-v4), with
+    // the survival probability (max beta eta^2)^rr_exponent: the square root by default, as
+    // Cycles does, which ends dim paths later than pbrt's and Mitsuba's exponent 1 and on the
+    // Cornell box gives 18 % less MSE for 9 % more time (docs/rendering.md).
+    const float r = beta.max_channel() * eta_scale;
+    const float rr = rr_exponent_ == 0.5f   ? std::sqrt(r)
+                     : rr_exponent_ == 1.0f ? r
+                                            : std::pow(r, rr_exponent_);
     const float u_rr = sampler.get_1d();
     if (depth + 1 >= rr_depth_ && rr < 1.0f) {
       const float q = std::max(0.05f, 1.0f - rr);

@@ -13,8 +13,8 @@ namespace penumbra {
 /// Follows one path per camera sample: at each hit the BSDF picks the next direction, the
 /// throughput keeps the absorption so far, and the path ends when it leaves the scene, at
 /// max_depth bounces, or by Russian roulette (from rr_depth bounces on, with the survival
-/// probability set by the throughput; compensated for the eta^2 of refraction so radiance
-/// compressed into glass does not end paths early).
+/// probability min(0.95, (max beta eta^2)^rr_exponent) when that is below 1; eta^2 undoes the
+/// radiance scaling of refraction, so radiance compressed into glass does not end paths early).
 ///
 /// Strategies for the light a path reaches:
 /// - `mis` (default): at every non-specular vertex one light sample with a shadow ray
@@ -28,7 +28,9 @@ namespace penumbra {
 /// exactly: no light sampling there, and emission seen through them counts fully.
 ///
 /// Parameters: strategy (mis, nee, bsdf), max_depth (bounces; default unbounded: -1, or the
-/// scene's / --max-depth when given), rr_depth (default 3), light_sampler (power, uniform).
+/// scene's / --max-depth when given), rr_depth (default 3), rr_exponent (default 0.5, Cycles'
+/// square root; 1 is pbrt-v4's and Mitsuba 3's survival by the throughput itself), light_sampler
+/// (power, uniform).
 class PathIntegrator final : public SamplingIntegrator {
  public:
   enum class Strategy { kMis, kNee, kBsdf };
@@ -54,6 +56,7 @@ class PathIntegrator final : public SamplingIntegrator {
   Strategy strategy_;
   int max_depth_;  ///< -1: unbounded
   int rr_depth_;
+  float rr_exponent_;  ///< survival probability = (max beta eta^2)^rr_exponent, in (0, 1]
   LightSampler light_sampler_;
 };
 
