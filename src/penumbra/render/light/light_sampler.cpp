@@ -30,6 +30,7 @@ LightSampler::LightSampler(const std::vector<const Light*>& lights, const std::s
     throw Error("unknown light sampler '" + strategy + "' (valid: power, uniform)");
   }
   table_ = AliasTable(weights);
+  if (lights_.size() == 1) single_ = lights_[0];
   index_.reserve(lights_.size());
   for (size_t i = 0; i < lights_.size(); ++i) index_.emplace_back(lights_[i], uint32_t(i));
   std::sort(index_.begin(), index_.end(), [](const auto& a, const auto& b) {
@@ -37,7 +38,7 @@ LightSampler::LightSampler(const std::vector<const Light*>& lights, const std::s
   });
 }
 
-SampledLight LightSampler::sample(float u, float* u_remapped) const {
+SampledLight LightSampler::sample_table(float u, float* u_remapped) const {
   if (lights_.empty()) {
     if (u_remapped) *u_remapped = u;
     return {};
@@ -47,7 +48,7 @@ SampledLight LightSampler::sample(float u, float* u_remapped) const {
   return s;
 }
 
-float LightSampler::pmf(const Light* light) const {
+float LightSampler::pmf_table(const Light* light) const {
   const auto it = std::lower_bound(
       index_.begin(), index_.end(), light,
       [](const auto& entry, const Light* l) { return std::less<const Light*>()(entry.first, l); });
