@@ -6,9 +6,11 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -61,6 +63,21 @@ const std::vector<Case>& family(const std::string& name) {
   if (name == "moving_soup") scenes.emplace_back(moving_soup(1000, 16), 100'000);
   if (name == "moving_shapes") scenes.emplace_back(moving_shapes(17), 100'000);
   if (name == "static_and_moving") scenes.emplace_back(static_and_moving(18), 100'000);
+  // Extreme magnitudes: the same mixed scene from 1e-10 to 1e10 in size (the accepted range,
+  // kMinSceneExtent to kMaxCoordinate), and far from the origin; a scene whose extent
+  // overflows float.
+  if (name == "scaled") {
+    const TestScene base = mixed_shapes(19);
+    for (const float s : {1e-10f, 1e-5f, 1e5f, 1e10f})
+      scenes.emplace_back(scaled(base, s, Vec3(0.0f)), 20'000);
+    scenes.emplace_back(scaled(base, 1.0f, Vec3(1e6f, -2e6f, 3e6f)), 20'000);
+  }
+  // Rays from the ordinary part: the extent of the whole scene is not finite.
+  std::optional<TestScene> ray_source;
+  if (name == "float_range") {
+    scenes.emplace_back(float_range_extent(20), 100'000);
+    ray_source = random_soup(500, 20);
+  }
   if (name == "torus") {  // the 50k-triangle mesh gets fewer rays: brute costs O(N) per ray
     scenes.emplace_back(torus(20, 25), 60'000);
     scenes.emplace_back(torus(50, 40), 36'000);
@@ -70,7 +87,7 @@ const std::vector<Case>& family(const std::string& name) {
   uint64_t seed = 100;
   for (auto& [scene, n] : scenes) {
     Case c{std::move(scene), {}, {}};
-    c.rays = mixed_rays(c.scene.prims, n, seed++);
+    c.rays = mixed_rays(ray_source ? ray_source->prims : c.scene.prims, n, seed++);
     if (c.scene.prims.has_motion()) set_random_times(c.rays, seed);
     c.reference = brute_hits(c.scene.prims, c.rays);
     cases.push_back(std::move(c));
@@ -224,6 +241,10 @@ TEST_P(AccelDifferential, SpheresQuadsAndTriangles) {
 TEST_P(AccelDifferential, DegenerateAndNonFiniteTriangles) {
   run_family("degenerate");
 }
+TEST_P(AccelDifferential, ScenesFrom1em10To1e10InSizeAndFarFromTheOrigin) {
+  run_family("scaled");
+}
+TEST_P(AccelDifferential, SceneWhoseExtentOverflowsFloat) { run_family("float_range"); }
 TEST_P(AccelDifferential, TessellatedTorus) {
   run_family("torus");
 }
@@ -236,6 +257,38 @@ TEST_P(AccelDifferential, MovingSpheresQuadsAndTriangles) {
 }
 TEST_P(AccelDifferential, StaticRoomWithMovingPrimitives) {
   run_family("static_and_moving");
+}
+
+// Rays with a NaN or infinite origin or direction, a zero direction, or an empty or NaN
+// interval never reach a traversal loop (a NaN slab test passes every box: the wide BVH's
+// stack used to overflow); every structure answers "no hit", as brute force does.
+TEST_P(AccelDifferential, UntraceableRaysAreNeverHit) {
+  const TestScene scene = mixed_shapes(21);
+  auto accel = make_accelerator(GetParam());
+  accel->build(scene.prims);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  std::vector<Ray> rays;
+  const auto ray = [](Vec3 o, Vec3 d, float tmin = 0.0f, float tmax = kInfinity) {
+    Ray r;
+    r.o = o, r.d = d, r.tmin = tmin, r.tmax = tmax;
+    return r;
+  };
+  for (const Vec3 o : {Vec3(nan, 0, 0), Vec3(0, kInfinity, 0), Vec3(0, 0, -kInfinity)})
+    rays.push_back(ray(o, Vec3(0.3f, 0.2f, 0.9f)));
+  for (const Vec3 d : {Vec3(nan, nan, nan), Vec3(0, nan, 1), Vec3(kInfinity, 0, 0), Vec3(0, 0, 0)})
+    rays.push_back(ray(Vec3(0.1f, 0.2f, -9.0f), d));
+  rays.push_back(ray(Vec3(0.1f, 0.2f, -9.0f), Vec3(0, 0, 1), 5.0f, 1.0f));
+  rays.push_back(ray(Vec3(0.1f, 0.2f, -9.0f), Vec3(0, 0, 1), nan));
+  rays.push_back(ray(Vec3(0.1f, 0.2f, -9.0f), Vec3(0, 0, 1), 0.0f, nan));
+  for (const Ray& r : rays) {
+    Hit hit;
+    EXPECT_FALSE(accel->intersect(r, hit)) << describe(r);
+    EXPECT_FALSE(hit.valid());
+    EXPECT_FALSE(accel->occluded(r)) << describe(r);
+  }
+  // The same rays made traceable do hit: the scene is in their way.
+  Hit hit;
+  EXPECT_TRUE(accel->intersect(ray(Vec3(0.1f, 0.2f, -9.0f), Vec3(0, 0, 1)), hit));
 }
 
 TEST_P(AccelDifferential, EmptyAndAllInvalidSetsAreNeverHit) {

@@ -4,6 +4,8 @@
 #include <limits>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "penumbra/core/rng.h"
 #include "penumbra/geometry/sphere_direction.h"
 #include "penumbra/core/transform.h"
@@ -290,6 +292,48 @@ Vec3 point_on(const PrimitiveSet& prims, uint32_t id, float u1, float u2) {
     }
   }
   return {};
+}
+
+TestScene scaled(const TestScene& scene, float scale, Vec3 offset) {
+  TestScene s{fmt::format("{} x {:g} + ({:g}, {:g}, {:g})", scene.name, scale, offset.x, offset.y,
+                          offset.z),
+              {}};
+  const PrimitiveSet& in = scene.prims;
+  const auto map = [&](Vec3 p) { return p * scale + offset; };
+  for (uint32_t id = 0; id < in.size(); ++id) {
+    switch (in.kind(id)) {
+      case PrimKind::kTriangle: {
+        const Vec3* v = in.triangle(id);
+        add_triangle(s.prims, map(v[0]), map(v[1]), map(v[2]));
+        break;
+      }
+      case PrimKind::kSphere: {
+        const SphereData& d = in.sphere(id);
+        s.prims.add_sphere({map(d.center), d.radius * scale}, 1);
+        break;
+      }
+      case PrimKind::kQuad: {
+        const QuadData& q = in.quad(id);
+        s.prims.add_quad({map(q.p), q.e1 * scale, q.e2 * scale}, 2);
+        break;
+      }
+    }
+  }
+  return s;
+}
+
+TestScene float_range_extent(uint64_t seed) {
+  TestScene s = random_soup(500, seed);
+  s.name = "soup with triangles near the float range";
+  constexpr float kBig = 3.0e38f;
+  add_triangle(s.prims, Vec3(-kBig, -kBig, -kBig), Vec3(kBig, -kBig, -kBig), Vec3(0, kBig, 0));
+  add_triangle(s.prims, Vec3(-kBig, 5, 5), Vec3(kBig, 5, 5), Vec3(0, 6, kBig));
+  add_triangle(s.prims, Vec3(0.2f, 0.2f, kBig), Vec3(0.8f, 0.2f, kBig), Vec3(0.5f, 0.9f, kBig));
+  // Within the accepted magnitude: huge, but hit like any other.
+  constexpr float kLimit = kMaxCoordinate;
+  add_triangle(s.prims, Vec3(-kLimit, -kLimit, 2), Vec3(kLimit, -kLimit, 2), Vec3(0, kLimit, 2));
+  s.prims.add_sphere({Vec3(0.5f, 0.5f, -0.5f * kLimit), 0.25f * kLimit}, 1);
+  return s;
 }
 
 std::vector<Ray> mixed_rays(const PrimitiveSet& prims, size_t n, uint64_t seed) {

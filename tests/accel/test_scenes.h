@@ -28,6 +28,13 @@ TestScene thin_and_large(uint64_t seed);
 TestScene mixed_shapes(uint64_t seed);
 /// Ordinary triangles mixed with zero-area, NaN-vertex and infinite-vertex triangles.
 TestScene degenerate_triangles(uint64_t seed);
+/// `scene` with every point p mapped to p * scale + offset (sphere radii and edges scaled),
+/// named after the map: for the differential tests at extreme magnitudes.
+TestScene scaled(const TestScene& scene, float scale, Vec3 offset);
+/// random_soup(500, seed) plus a few triangles with vertices near the float range (about
+/// +-3e38, beyond kMaxCoordinate: never hit), and a triangle and a sphere reaching
+/// kMaxCoordinate (hit like any other). Rays for it come from random_soup(500, seed).
+TestScene float_range_extent(uint64_t seed);
 /// A torus tessellated into 2 * rings * sides triangles (a stand-in for a scanned mesh).
 TestScene torus(int rings, int sides);
 

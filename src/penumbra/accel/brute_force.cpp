@@ -23,11 +23,13 @@ bool BruteForce::intersect(const Ray& ray, Hit& hit) const {
   const PreparedRay pr(ray);
   hit = Hit{};
   hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
   for (uint32_t id : valid_) prims_->intersect(id, pr, hit);
   return hit.valid();
 }
 
 bool BruteForce::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   const PreparedRay pr(ray);
   for (uint32_t id : valid_)
     if (prims_->occludes(id, pr)) return true;

@@ -212,12 +212,14 @@ bool BspTree::traverse(const PreparedRay& pr, Hit& hit) const {
 bool BspTree::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
   if (tree_.nodes.empty()) return false;
   const PreparedRay pr(ray);
   return tris_.empty() ? traverse<false, false>(pr, hit) : traverse<false, true>(pr, hit);
 }
 
 bool BspTree::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   if (tree_.nodes.empty()) return false;
   Hit hit;
   hit.t = ray.tmax;

@@ -90,12 +90,14 @@ bool Bvh::traverse(const PreparedRay& pr, Hit& hit) const {
 bool Bvh::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   return leaf_.triangles() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
 }
 
 bool Bvh::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   Hit hit;

@@ -259,12 +259,14 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
 bool KdTree::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   return blocks_.size() == 0 ? traverse<false, false>(pr, hit) : traverse<false, true>(pr, hit);
 }
 
 bool KdTree::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   Hit hit;

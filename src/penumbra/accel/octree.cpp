@@ -408,11 +408,13 @@ bool Octree::dispatch(const PreparedRay& pr, Hit& hit) const {
 bool Octree::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   return dispatch<false>(PreparedRay(ray), hit);
 }
 
 bool Octree::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   Hit hit;
   hit.t = ray.tmax;

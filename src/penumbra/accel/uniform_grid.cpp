@@ -341,11 +341,13 @@ bool UniformGrid::dispatch(const PreparedRay& pr, Hit& hit) const {
 bool UniformGrid::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
   if (ids_.empty()) return false;
   return dispatch<false>(PreparedRay(ray), hit);
 }
 
 bool UniformGrid::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   if (ids_.empty()) return false;
   Hit hit;
   hit.t = ray.tmax;

@@ -308,6 +308,7 @@ template <int W>
 bool WideBvh<W>::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   return blocks_.size() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
@@ -315,6 +316,7 @@ bool WideBvh<W>::intersect(const Ray& ray, Hit& hit) const {
 
 template <int W>
 bool WideBvh<W>::occluded(const Ray& ray) const {
+  if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   Hit hit;

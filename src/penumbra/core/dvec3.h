@@ -3,6 +3,7 @@
 /// (exact predicates, spherical rectangles, test references).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "penumbra/core/vec.h"
 
@@ -56,6 +57,25 @@ inline DVec3 normalize(const DVec3& v) {
 /// True when every coordinate is finite.
 inline bool is_finite(const DVec3& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+/// The largest float not above `d` (outward rounding of a lower bound).
+inline float round_down(double d) {
+  const auto f = static_cast<float>(d);
+  return double(f) > d ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
+}
+/// The smallest float not below `d` (outward rounding of an upper bound).
+inline float round_up(double d) {
+  const auto f = static_cast<float>(d);
+  return double(f) < d ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
+}
+/// Per coordinate round_down.
+inline Vec3 round_down(const DVec3& v) {
+  return {round_down(v.x), round_down(v.y), round_down(v.z)};
+}
+/// Per coordinate round_up.
+inline Vec3 round_up(const DVec3& v) {
+  return {round_up(v.x), round_up(v.y), round_up(v.z)};
 }
 
 }  // namespace penumbra

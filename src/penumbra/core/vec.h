@@ -45,8 +45,30 @@ constexpr float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; 
 constexpr Vec3 cross(Vec3 a, Vec3 b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
-inline float length(Vec3 v) { return std::sqrt(dot(v, v)); }
-inline Vec3 normalize(Vec3 v) { return v / length(v); }
+/// Squared lengths in this range have finite, normal squares on the way: the fast paths.
+inline constexpr float kSafeLengthSqLo = 1e-30f, kSafeLengthSqHi = 1e30f;
+/// |v| for every finite v. The squares of components beyond about 1.8e19 overflow and those
+/// below about 1e-19 underflow, so such vectors are scaled by their largest component first
+/// (a cross product of two edges of 1e10 is 1e20: its plain length would be infinite).
+inline float length(Vec3 v) {
+  const float l2 = dot(v, v);
+  if (l2 > kSafeLengthSqLo && l2 < kSafeLengthSqHi) [[likely]]
+    return std::sqrt(l2);
+  const float m = std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
+  if (!(m > 0.0f) || !std::isfinite(m)) return std::sqrt(l2);  // zero, infinite or NaN
+  const Vec3 u = v / m;
+  return m * std::sqrt(dot(u, u));
+}
+/// The unit vector along v, for every finite non-zero v (scaled first, as in length).
+inline Vec3 normalize(Vec3 v) {
+  const float l2 = dot(v, v);
+  if (l2 > kSafeLengthSqLo && l2 < kSafeLengthSqHi) [[likely]]
+    return v / std::sqrt(l2);
+  const float m = std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z)));
+  if (!(m > 0.0f) || !std::isfinite(m)) return v / std::sqrt(l2);  // zero, infinite or NaN
+  const Vec3 u = v / m;
+  return u / std::sqrt(dot(u, u));
+}
 constexpr Vec3 min(Vec3 a, Vec3 b) {
   return {std::min(a.x, b.x), std::min(a.y, b.y), std::min(a.z, b.z)};
 }

@@ -2,13 +2,15 @@
 
 #include <cmath>
 
+#include "penumbra/core/dvec3.h"
 #include "penumbra/core/error.h"
 
 namespace penumbra {
 
 namespace {
 bool finite_box(const Bounds3& b) {
-  return is_finite(b.lo) && is_finite(b.hi) && !b.empty();
+  return is_finite(b.lo) && is_finite(b.hi) && !b.empty() &&
+         max_component(abs(b.lo)) <= kMaxCoordinate && max_component(abs(b.hi)) <= kMaxCoordinate;
 }
 }  // namespace
 
@@ -162,13 +164,22 @@ Bounds3 PrimitiveSet::end_bounds(uint32_t id, bool end, bool& finite) const {
     case PrimKind::kSphere: {
       const SphereData& s = end ? sphere_end(id) : sphere(id);
       finite = finite && is_finite(s.center) && std::isfinite(s.radius);
-      b = Bounds3(s.center - Vec3(s.radius), s.center + Vec3(s.radius));
+      // Rounded outward: in float, c - r rounds to c when r is below half an ulp of c (a small
+      // sphere far from the origin), and the box would miss the sphere the exact test sees.
+      const DVec3 c(s.center), r(s.radius, s.radius, s.radius);
+      b = Bounds3(round_down(c - r), round_up(c + r));
       break;
     }
     case PrimKind::kQuad: {
       const QuadData& q = end ? quad_end(id) : quad(id);
       finite = finite && is_finite(q.p) && is_finite(q.e1) && is_finite(q.e2);
-      b = Bounds3::of_point(q.p);
+      // Corners in double, rounded outward (float sums may round a corner inward), together
+      // with the corners as float sums give them (what code that computes p + e1 + e2 in float
+      // sees, a rounding or two beyond the exact corner).
+      const DVec3 p(q.p), e1(q.e1), e2(q.e2);
+      const DVec3 lo = min(min(p, p + e1), min(p + e2, p + e1 + e2));
+      const DVec3 hi = max(max(p, p + e1), max(p + e2, p + e1 + e2));
+      b = Bounds3(round_down(lo), round_up(hi));
       b.extend(q.p + q.e1);
       b.extend(q.p + q.e2);
       b.extend(q.p + q.e1 + q.e2);

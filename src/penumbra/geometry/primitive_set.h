@@ -62,6 +62,19 @@ struct PrimOrigin {
   uint32_t local;
 };
 
+/// The largest coordinate magnitude a primitive may have (its box, so also a sphere's centre
+/// plus radius and a parallelogram's far corner). The ray-primitive tests form products of
+/// three coordinates relative to the ray origin (the watertight test's scaled t, the
+/// parallelogram's), which stay finite in float for distances up to 2e12 (8e36 < 3.4e38); boxes,
+/// extents and surface areas then stay finite too. A primitive beyond it is treated like one
+/// with a NaN vertex: its bounds are empty and no structure (brute force included) ever hits
+/// it; the renderer's World refuses it at load, naming it.
+inline constexpr float kMaxCoordinate = 1e12f;
+/// The smallest scene extent (bounding-box diagonal) the renderer accepts: below it the same
+/// products of three coordinates leave float's normal range and hits are lost (a scene of
+/// extent 1e-20 renders black). World refuses a smaller non-empty scene at load.
+inline constexpr float kMinSceneExtent = 1e-10f;
+
 /// World-space primitives with dense ids 0..size()-1, in the order they were added.
 class PrimitiveSet {
  public:
@@ -116,8 +129,8 @@ class PrimitiveSet {
   QuadData quad_at(uint32_t id, float time) const;
 
   /// World bounds of primitive `id` (for a moving one: over the whole interval, the union of its
-  /// bounds at both ends); empty for a primitive with non-finite coordinates, which builders must
-  /// skip (such a primitive can never be hit).
+  /// bounds at both ends); empty for a primitive with non-finite coordinates or coordinates
+  /// beyond kMaxCoordinate, which builders must skip (such a primitive can never be hit).
   Bounds3 prim_bounds(uint32_t id) const;
   /// Bounds of all primitives with finite bounds.
   const Bounds3& bounds() const { return bounds_; }

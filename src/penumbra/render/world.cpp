@@ -7,6 +7,8 @@
 #endif
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
 #include "penumbra/render/light/area_light.h"
@@ -15,6 +17,47 @@
 #include "penumbra/render/material/material_registry.h"
 
 namespace penumbra {
+
+void World::check_magnitudes(const std::string& file, const ShapeDesc& sd, uint32_t first) const {
+  // A primitive whose box is empty has a NaN or infinite coordinate, or one beyond
+  // kMaxCoordinate, in world space (at either end of its motion): refused here, rather than
+  // left out by every structure and silently invisible.
+  for (uint32_t id = first; id < prims_.size(); ++id) {
+    if (!prims_.prim_bounds(id).empty()) continue;
+    const auto vec = [](Vec3 v) { return fmt::format("({:g}, {:g}, {:g})", v.x, v.y, v.z); };
+    std::string what;
+    switch (prims_.kind(id)) {
+      case PrimKind::kTriangle: {
+        const Vec3* v = prims_.triangle(id);
+        const Vec3* e = prims_.triangle_end(id);
+        what = fmt::format("triangle {} has world-space vertices {}, {}, {}",
+                           prims_.origin(id).local, vec(v[0]), vec(v[1]), vec(v[2]));
+        if (prims_.moving(id))
+          what += fmt::format(" (at time 1: {}, {}, {})", vec(e[0]), vec(e[1]), vec(e[2]));
+        break;
+      }
+      case PrimKind::kSphere: {
+        const SphereData& a = prims_.sphere(id);
+        const SphereData& b = prims_.sphere_end(id);
+        what = fmt::format("the sphere has world-space centre {} and radius {:g}", vec(a.center),
+                           a.radius);
+        if (prims_.moving(id))
+          what += fmt::format(" (at time 1: {}, {:g})", vec(b.center), b.radius);
+        break;
+      }
+      case PrimKind::kQuad: {
+        const QuadData& q = prims_.quad(id);
+        what = fmt::format("the quad has world-space origin {} and edges {}, {}", vec(q.p),
+                           vec(q.e1), vec(q.e2));
+        break;
+      }
+    }
+    throw InputError(file, sd.path,
+                     fmt::format("{}: a coordinate is NaN, infinite or beyond +-{:g}, the largest "
+                                 "magnitude penumbra traces exactly",
+                                 what, kMaxCoordinate));
+  }
+}
 
 World::World(const SceneDesc& desc, const std::string& accel_spec) {
   background_ = desc.render.background;
@@ -83,10 +126,22 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
         }
       }
     }
+    check_magnitudes(desc.file, sd, first);
     if (sd.emission && !sd.emission->is_black())
       emitters_.push_back(
           {shape, first, prims_.size() - first, *sd.emission, sd.two_sided_emission});
     shapes_.push_back(info);
+  }
+
+  // Too small a scene loses its hits to float underflow (see kMinSceneExtent).
+  const Bounds3& extent = prims_.bounds();
+  if (!extent.empty() && prims_.size() > 0) {
+    const float diagonal = length(extent.diagonal());
+    if (diagonal > 0.0f && diagonal < kMinSceneExtent)
+      throw InputError(desc.file, "/shapes",
+                       fmt::format("the scene's extent (bounding-box diagonal) is {:g}, below "
+                                   "{:g}, the smallest penumbra traces exactly: scale it up",
+                                   diagonal, kMinSceneExtent));
   }
 
   // Area lights of the emissive shapes, then the background as a constant environment.

@@ -77,6 +77,9 @@ class World {
   const Bounds3& bounds() const { return prims_.bounds(); }
 
  private:
+  /// Throws InputError (file, the shape's JSON path, the primitive and its coordinates) when a
+  /// primitive from `first` on has a NaN, infinite or larger than kMaxCoordinate coordinate.
+  void check_magnitudes(const std::string& file, const ShapeDesc& sd, uint32_t first) const;
   /// Per-shape data the interaction needs beyond the primitive set.
   struct ShapeInfo {
     const Material* material = nullptr;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "penumbra/core/dvec3.h"
+
 namespace penumbra {
 
 namespace {
@@ -51,18 +53,6 @@ void clip_to_box(Polygon& poly, const Bounds3& box) {
   }
 }
 
-/// The largest float not above `d`.
-float round_down(double d) {
-  const auto f = static_cast<float>(d);
-  return double(f) > d ? std::nextafter(f, -std::numeric_limits<float>::infinity()) : f;
-}
-
-/// The smallest float not below `d`.
-float round_up(double d) {
-  const auto f = static_cast<float>(d);
-  return double(f) < d ? std::nextafter(f, std::numeric_limits<float>::infinity()) : f;
-}
-
 /// Bounds of `poly` rounded outward, intersected with `box`.
 Bounds3 polygon_bounds(const Polygon& poly, const Bounds3& box) {
   if (poly.n == 0) return {};
@@ -97,9 +87,15 @@ bool prim_polygon(const PrimitiveSet& prims, uint32_t id, Polygon& poly) {
       return true;
     }
     case PrimKind::kQuad: {
+      // Corners in double: float sums round them, inward as often as not, and a quad far from
+      // the origin (where an ulp is larger than it is) would lose its edges.
       const QuadData& q = prims.quad(id);
-      const Vec3 pts[4] = {q.p, q.p + q.e1, q.p + q.e1 + q.e2, q.p + q.e2};
-      poly = make_polygon(pts);
+      const DVec3 p(q.p), e1(q.e1), e2(q.e2);
+      poly = Polygon{};
+      for (const DVec3& c : {p, p + e1, p + e1 + e2, p + e2}) {
+        const double d[3] = {c.x, c.y, c.z};
+        poly.push(d);
+      }
       return true;
     }
     default:

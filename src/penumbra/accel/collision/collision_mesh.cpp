@@ -7,25 +7,13 @@
 
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/collision/triangle_triangle.h"
+#include "penumbra/core/dvec3.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/timer.h"
 
 namespace penumbra::collision {
 
 namespace {
-
-constexpr float kFloatInf = std::numeric_limits<float>::infinity();
-
-float round_down(double x) {
-  float f = static_cast<float>(x);
-  if (double(f) > x) f = std::nextafter(f, -kFloatInf);
-  return f;
-}
-float round_up(double x) {
-  float f = static_cast<float>(x);
-  if (double(f) < x) f = std::nextafter(f, kFloatInf);
-  return f;
-}
 
 /// The affine image of p under m (the projective row is ignored: poses are affine).
 DVec3 apply(const Mat4& m, const DVec3& p) {

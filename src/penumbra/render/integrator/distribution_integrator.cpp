@@ -13,7 +13,7 @@ namespace penumbra {
 DistributionIntegrator::DistributionIntegrator(const World& world, const ParamList& params,
                                                int max_depth)
     : world_(world),
-      max_depth_(static_cast<int>(params.get_int("max_depth", max_depth, 0, 1000))),
+      max_depth_(recursion_depth(params, max_depth, "distribution")),
       light_samples_(static_cast<int>(params.get_int("light_samples", 4, 1, 4096))),
       glossy_samples_(static_cast<int>(params.get_int("glossy_samples", 1, 1, 4096))) {
   params.check_all_used();

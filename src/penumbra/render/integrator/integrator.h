@@ -4,7 +4,11 @@
 /// on the shared progressive loop.
 #include <string>
 
+#include <fmt/format.h>
+
 #include "penumbra/core/color.h"
+#include "penumbra/core/error.h"
+#include "penumbra/core/params.h"
 #include "penumbra/core/ray.h"
 #include "penumbra/render/render_stats.h"
 #include "penumbra/render/sampler/sampler.h"
@@ -41,5 +45,20 @@ class SamplingIntegrator : public Integrator {
   /// Radiance arriving at the camera along `ray`.
   virtual Rgb li(const Ray& ray, Sampler& sampler, RayCounter& counter) const = 0;
 };
+
+/// The deepest recursion of the recursive integrators (whitted, distribution): each bounce is a
+/// stack frame of a few hundred bytes, so this stays far from the smallest thread stacks.
+inline constexpr int kMaxRecursionDepth = 1000;
+
+/// `max_depth` of a recursive integrator `name`: the parameter, else `fallback` (the scene's or
+/// --max-depth), both checked against [0, kMaxRecursionDepth] (a scene asking for 30,000
+/// bounces between two mirrors must not overflow the call stack).
+inline int recursion_depth(const ParamList& params, int fallback, const char* name) {
+  if (fallback > kMaxRecursionDepth)
+    throw Error(fmt::format("{}: max_depth {} is more than {}, the deepest recursion it supports "
+                            "(path is iterative and has no limit)",
+                            name, fallback, kMaxRecursionDepth));
+  return static_cast<int>(params.get_int("max_depth", fallback, 0, kMaxRecursionDepth));
+}
 
 }  // namespace penumbra

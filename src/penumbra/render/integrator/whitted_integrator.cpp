@@ -8,7 +8,7 @@
 namespace penumbra {
 
 WhittedIntegrator::WhittedIntegrator(const World& world, const ParamList& params, int max_depth)
-    : world_(world), max_depth_(static_cast<int>(params.get_int("max_depth", max_depth, 0, 1000))) {
+    : world_(world), max_depth_(recursion_depth(params, max_depth, "whitted")) {
   params.check_all_used();
   for (const Light* light : world.lights())
     if (light->is_delta()) lights_.push_back(light);
