@@ -121,13 +121,17 @@ bool split_declaration(const std::string& s, std::string& type, std::string& nam
 
 }  // namespace
 
-double pbrt_number(const PbrtToken& t) {
-  if (t.kind != Kind::kWord) t.loc.fail("expected a number, got " + t.describe());
-  const char* begin = t.text.c_str();
+bool pbrt_parse_number(const std::string& text, double& value) {
+  const char* begin = text.c_str();
   char* end = nullptr;
   errno = 0;
-  const double v = std::strtod(begin, &end);
-  if (end == begin || *end != '\0' || !std::isfinite(v) || errno == ERANGE)
+  value = std::strtod(begin, &end);
+  return end != begin && *end == '\0' && std::isfinite(value) && errno != ERANGE;
+}
+
+double pbrt_number(const PbrtToken& t) {
+  double v;
+  if (t.kind != Kind::kWord || !pbrt_parse_number(t.text, v))
     t.loc.fail("expected a number, got " + t.describe());
   return v;
 }

@@ -78,6 +78,8 @@ struct PbrtEntity {
 /// Appends "LOC: message" to `warnings`.
 void pbrt_warn(std::vector<std::string>& warnings, const PbrtLoc& loc, const std::string& message);
 
+/// Parses a whole word as a finite number (strtod syntax); false when it is not one.
+bool pbrt_parse_number(const std::string& text, double& value);
 /// Parses a word as a number; throws InputError at `t` otherwise.
 double pbrt_number(const PbrtToken& t);
 

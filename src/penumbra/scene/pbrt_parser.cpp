@@ -120,12 +120,15 @@ std::vector<double> PbrtParser::numbers(const PbrtToken& directive, size_t n) {
                  std::to_string(v.size()));
     if (t.kind == Kind::kEnd && bracketed)
       open.loc.fail("unbalanced '[': no matching ']' before the end of the file");
-    if (t.kind != Kind::kWord)
+    double x;
+    if (t.kind != Kind::kWord || !pbrt_parse_number(t.text, x))
       t.loc.fail(directive.text + " takes " + std::to_string(n) + " numbers, got " + t.describe());
-    v.push_back(pbrt_number(t));
+    v.push_back(x);
   }
   if (bracketed) {
     const PbrtToken t = tok().next();
+    if (t.kind == Kind::kEnd)
+      open.loc.fail("unbalanced '[': no matching ']' before the end of the file");
     if (t.kind != Kind::kClose)
       t.loc.fail(directive.text + " takes " + std::to_string(n) + " numbers; expected ']', got " +
                  t.describe());

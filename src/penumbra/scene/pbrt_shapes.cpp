@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <numbers>
 
+#include <zlib.h>
+
 #include "penumbra/scene/ply_reader.h"
 #include "penumbra/scene/transform_parser.h"
 
@@ -125,13 +127,27 @@ std::vector<ShapeDesc> bilinear_mesh(const PbrtEntity& e, const PbrtShapeContext
   return out;
 }
 
+// The decompressed content of a gzip file (zlib's gzread).
+std::string gunzip(const std::string& path, const PbrtLoc& loc) {
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) loc.fail("cannot open " + path);
+  std::string out;
+  char buf[1 << 16];
+  int n;
+  while ((n = gzread(f, buf, sizeof buf)) > 0) out.append(buf, size_t(n));
+  const bool ok = n == 0;
+  gzclose(f);
+  if (!ok) loc.fail("corrupt gzip data in " + path);
+  return out;
+}
+
 std::vector<ShapeDesc> ply_mesh(const PbrtEntity& e, const PbrtShapeContext& ctx) {
   const std::string name = e.params.get_string("filename", "");
   if (name.empty()) e.loc.fail("Shape \"plymesh\" needs \"string filename\"");
   const std::string path = pbrt_resolve(name, ctx.search_dirs);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) e.loc.fail("PLY file not found: " + path);
-  TriangleMesh mesh = read_ply(path);
+  TriangleMesh mesh = path.ends_with(".gz") ? parse_ply(gunzip(path, e.loc), path) : read_ply(path);
   if (mesh.triangle_count() == 0) e.loc.fail("PLY file has no faces: " + path);
   orient(mesh, ctx.reverse_orientation);
   std::vector<ShapeDesc> out;
