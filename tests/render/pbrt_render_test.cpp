@@ -3,6 +3,8 @@
 /// of a plain LookAt camera is on the right of the picture).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "penumbra/scene/pbrt_parser.h"
 #include "render_helpers.h"
 
@@ -79,9 +81,10 @@ TEST(PbrtRender, AnObjectOnPbrtsPlusXSideIsOnTheRight) {
   SceneDesc s = load_scene(std::string(PENUMBRA_TEST_DATA) + "/pbrt/two-spheres.pbrt");
   s.render.spp = 4;
   const RgbImage img = render_desc(s, 2);
-  // Redness (r - g) of each half: the red sphere is at pbrt x = +1, the copper one at -1.
-  const Rgb left = region_mean(img, 0, 8, 24, 32), right = region_mean(img, 24, 8, 48, 32);
-  EXPECT_GT(right.r - right.g, 2.0f * (left.r - left.g) + 0.02f)
+  // Redness (r - g) where each sphere is: the red one at pbrt x = +1 is on the right (pixels
+  // 28-40 of 48), the grey metal one at x = -1 on the left (8-20). Mirrored, they would swap.
+  const Rgb left = region_mean(img, 8, 10, 20, 22), right = region_mean(img, 28, 10, 40, 22);
+  EXPECT_GT(right.r - right.g, 4.0f * std::max(0.0f, left.r - left.g) + 0.01f)
       << "left " << left.r << " " << left.g << ", right " << right.r << " " << right.g;
 }
 

@@ -88,6 +88,23 @@ TEST(PbrtMaterials, DielectricsSmoothRoughAndNamedGlass) {
       has_warning(s, "test.pbrt:8:1: material \"thindielectric\" rendered as \"dielectric\""));
 }
 
+TEST(PbrtMaterials, SpectrumValues) {
+  const SceneDesc s = world(
+      "Material \"diffuse\" \"spectrum reflectance\" [0.25]\nShape \"sphere\"\n"
+      "Material \"diffuse\" \"spectrum reflectance\" [400 0.2 500 0.4 600 0.6]\n"
+      "Shape \"sphere\"\n");
+  std::vector<const SceneParams*> m;
+  for (const ShapeDesc& sh : s.shapes)
+    for (const MaterialDesc& d : s.materials)
+      if (d.name == sh.material) m.push_back(&d.params);
+  EXPECT_EQ(m[0]->get_rgb("albedo", {}), Rgb(0.25f));
+  EXPECT_FLOAT_EQ(m[1]->get_rgb("albedo", {}).g, 0.4f);
+  EXPECT_TRUE(has_warning(s, "test.pbrt:4:20: sampled spectrum \"spectrum reflectance\""));
+  EXPECT_EQ(pbrt_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"unobtainium\""),
+            "test.pbrt:2:20: spectrum \"unobtainium\": named spectra other than metal-*-eta/k and "
+            "stdillum-* and spectrum files are not supported");
+}
+
 TEST(PbrtMaterials, NearestMaterialsAreWarnedAbout) {
   const SceneDesc s = world(
       "Material \"coateddiffuse\" \"rgb reflectance\" [0.2 0.4 0.6] \"float roughness\" 0.1\n"

@@ -92,7 +92,7 @@ void check_count(const PbrtParam& p, const TypeInfo& info) {
     if (!p.strings.empty() && p.strings.size() != 1)
       p.loc.fail("parameter " + p.declaration() + " takes one spectrum name or file, got " +
                  std::to_string(p.strings.size()));
-    if (!p.numbers.empty() && p.numbers.size() % 2 != 0)
+    if (p.numbers.size() > 1 && p.numbers.size() % 2 != 0)
       p.loc.fail("parameter " + p.declaration() +
                  " needs (wavelength, value) pairs, got an odd number of values (" +
                  std::to_string(p.numbers.size()) + ")");

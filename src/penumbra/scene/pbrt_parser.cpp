@@ -1,105 +1,19 @@
 #include "penumbra/scene/pbrt_parser.h"
 
-#include <cmath>
 #include <filesystem>
-#include <map>
-#include <memory>
-#include <numbers>
-#include <optional>
-#include <set>
 
-#include "penumbra/core/error.h"
 #include "penumbra/scene/mesh_reader.h"
-#include "penumbra/scene/pbrt_lights.h"
-#include "penumbra/scene/pbrt_materials.h"
-#include "penumbra/scene/pbrt_options.h"
+#include "penumbra/scene/pbrt_parser_state.h"
 #include "penumbra/scene/pbrt_shapes.h"
-#include "penumbra/scene/pbrt_tokenizer.h"
 #include "penumbra/scene/pbrt_transforms.h"
 
 namespace penumbra {
 
-namespace {
+namespace pbrt_detail {
 
-using Kind = PbrtToken::Kind;
 namespace fs = std::filesystem;
 
 constexpr int kMaxIncludeDepth = 64;
-constexpr const char* kDefaultMaterial = "pbrt-default";
-
-/// What AttributeBegin saves and AttributeEnd restores.
-struct GraphicsState {
-  Transform ctm;
-  bool reverse_orientation = false;
-  std::string material;  ///< name of a MaterialDesc; "" for pbrt's default (diffuse 0.5)
-  std::optional<PbrtAreaLight> area_light;
-};
-
-/// A saved state: by AttributeBegin (everything) or TransformBegin (the CTM only).
-struct SavedState {
-  GraphicsState state;
-  bool transform_only;
-  PbrtLoc loc;
-};
-
-/// An open file: its tokens and directory.
-struct Source {
-  std::unique_ptr<PbrtTokenizer> tokens;
-  std::string dir;
-};
-
-class PbrtParser {
- public:
-  PbrtParser(const std::string& file, const std::string& base_dir) : base_dir_(base_dir) {
-    scene_.file = file;
-  }
-  SceneDesc run(std::string text, const std::string& file);
-
- private:
-  PbrtTokenizer& tok() { return *sources_.back().tokens; }
-  std::vector<std::string>& warnings() { return scene_.warnings; }
-  void directive(const PbrtToken& t);
-  void include(const PbrtToken& t);
-  bool transform_directive(const PbrtToken& t);
-  void option_directive(const PbrtToken& t, std::optional<PbrtEntity>& slot);
-  void world_begin(const PbrtToken& t);
-  void attribute_end(const PbrtToken& t, bool transform_only);
-  void shape(const PbrtToken& t);
-  void material(const PbrtToken& t);
-  void make_named_material(const PbrtToken& t);
-  void texture(const PbrtToken& t);
-  void light(const PbrtToken& t);
-  std::string default_material();
-  void add_material(const std::string& name, PbrtEntity e);
-  void finish();
-  void require_world(const PbrtToken& t, bool world);
-
-  std::string string_arg(const PbrtToken& directive);
-  PbrtEntity entity(const PbrtToken& directive) {
-    PbrtEntity e;
-    e.type = string_arg(directive);
-    e.loc = directive.loc;
-    e.params = PbrtParams::parse(tok());
-    return e;
-  }
-  std::vector<double> numbers(const PbrtToken& directive, size_t n);
-
-  SceneDesc scene_;
-  std::string base_dir_;
-  std::vector<Source> sources_;
-  GraphicsState gs_;
-  std::vector<SavedState> stack_;
-  std::map<std::string, Transform> named_;  ///< named coordinate systems
-  PbrtOptions options_;
-  bool in_world_ = false;
-  Transform world_from_pbrt_;      ///< the mirror x -> -x, or the identity (set at WorldBegin)
-  std::optional<PbrtLoc> object_;  ///< inside ObjectBegin ... ObjectEnd
-  std::map<std::string, size_t> materials_;    ///< name -> index in scene_.materials
-  std::map<std::string, PbrtLoc> referenced_;  ///< NamedMaterial names -> first use
-  std::map<std::string, nlohmann::json> material_json_;
-  PbrtTextures textures_;
-  int anonymous_ = 0;
-};
 
 std::string PbrtParser::string_arg(const PbrtToken& directive) {
   const PbrtToken t = tok().next();
@@ -358,130 +272,17 @@ void PbrtParser::attribute_end(const PbrtToken& t, bool transform_only) {
   stack_.pop_back();
 }
 
-std::string PbrtParser::default_material() {
-  if (!materials_.count(kDefaultMaterial))
-    scene_.materials.push_back(
-        {kDefaultMaterial, SceneParams(nlohmann::json{{"type", "diffuse"}, {"albedo", 0.5}},
-                                       scene_.file, "/pbrt-default")});
-  materials_.emplace(kDefaultMaterial, scene_.materials.size() - 1);
-  return kDefaultMaterial;
-}
-
-void PbrtParser::shape(const PbrtToken& t) {
-  require_world(t, true);
-  PbrtEntity e = entity(t);
-  if (object_) return;                          // instancing: reported at ObjectBegin
-  if (gs_.material == "\x01interface") return;  // an interface material has no surface
-  PbrtShapeContext ctx{
-      world_from_pbrt_ * gs_.ctm, gs_.reverse_orientation, {sources_.back().dir, base_dir_}};
-  std::vector<ShapeDesc> shapes = map_pbrt_shape(e, ctx, warnings());
-  e.params.report_unused(warnings(), e.what("Shape"));
-  const std::string mat = gs_.material.empty() ? default_material() : gs_.material;
-  for (ShapeDesc& s : shapes) {
-    s.material = mat;
-    s.path = e.loc.str();
-    if (gs_.area_light && !gs_.area_light->radiance.is_black()) {
-      s.emission = gs_.area_light->radiance;
-      s.two_sided_emission = gs_.area_light->two_sided;
-    }
-    scene_.shapes.push_back(std::move(s));
-  }
-}
-
-void PbrtParser::add_material(const std::string& name, PbrtEntity e) {
-  std::optional<nlohmann::json> m;
-  if (e.type == "mix") {
-    // The nearest of a mix is its first material (penumbra has no stochastic mix).
-    const PbrtParam* p = e.params.find("materials", "string");
-    if (!p || p->strings.size() != 2) e.loc.fail("mix needs \"string materials\" [two names]");
-    const auto it = material_json_.find(p->strings[0]);
-    if (it == material_json_.end()) p->loc.fail("unknown material \"" + p->strings[0] + "\"");
-    e.params.find("amount", "float texture");
-    pbrt_warn(warnings(), e.loc,
-              "material \"mix\" rendered as its first material \"" + p->strings[0] + "\"");
-    m = it->second;
-  } else {
-    m = map_pbrt_material(e, textures_, warnings());
-  }
-  e.params.report_unused(warnings(), "material \"" + e.type + "\"");
-  if (!m) {  // interface: shapes with it are skipped
-    material_json_[name] = nlohmann::json();
-    return;
-  }
-  material_json_[name] = *m;
-  scene_.materials.push_back({name, SceneParams(*m, e.loc.str(), "")});
-  materials_[name] = scene_.materials.size() - 1;
-}
-
-void PbrtParser::material(const PbrtToken& t) {
-  require_world(t, true);
-  PbrtEntity e = entity(t);
-  const std::string name = "material@" + e.loc.str();
-  add_material(name, std::move(e));
-  gs_.material = materials_.count(name) ? name : "\x01interface";
-}
-
-void PbrtParser::make_named_material(const PbrtToken& t) {
-  require_world(t, true);
-  const std::string name = string_arg(t);
-  PbrtEntity e;
-  e.loc = t.loc;
-  e.params = PbrtParams::parse(tok());
-  if (material_json_.count(name)) t.loc.fail("named material \"" + name + "\" redefined");
-  e.type = e.params.get_string("type", "");
-  if (e.type.empty()) t.loc.fail("MakeNamedMaterial \"" + name + "\" needs a \"string type\"");
-  add_material(name, std::move(e));
-}
-
-void PbrtParser::texture(const PbrtToken& t) {
-  require_world(t, true);
-  const std::string name = string_arg(t);
-  const std::string value_type = string_arg(t);
-  if (value_type != "spectrum" && value_type != "float")
-    t.loc.fail("Texture \"" + name + "\": type must be \"spectrum\" or \"float\", got \"" +
-               value_type + "\"");
-  PbrtEntity e = entity(t);
-  if (textures_.count(name))
-    pbrt_warn(warnings(), t.loc, "texture \"" + name + "\" redefined; the new one is used");
-  textures_[name] = map_pbrt_texture(value_type, e, textures_, warnings());
-  e.params.report_unused(warnings(), e.what("Texture"));
-}
-
-void PbrtParser::light(const PbrtToken& t) {
-  require_world(t, true);
-  PbrtEntity e = entity(t);
-  std::optional<nlohmann::json> l = map_pbrt_light(e, world_from_pbrt_ * gs_.ctm, warnings());
-  e.params.report_unused(warnings(), e.what("LightSource"));
-  if (l) {
-    scene_.lights.emplace_back(*l, e.loc.str(), "");
-  }
-}
-
-void PbrtParser::finish() {
-  if (!in_world_) {
-    pbrt_warn(warnings(), {scene_.file, 1, 1}, "no WorldBegin: the scene is empty");
-    map_pbrt_options(options_, world_from_pbrt_, scene_);
-  }
-  if (!stack_.empty())
-    pbrt_warn(warnings(), stack_.back().loc, "AttributeBegin without AttributeEnd at the end");
-  if (object_) object_->fail("ObjectBegin without ObjectEnd");
-  // Named materials may be defined after their first use (pbrt resolves them at the end).
-  for (const auto& [name, loc] : referenced_)
-    if (!material_json_.count(name)) loc.fail("NamedMaterial: unknown material \"" + name + "\"");
-  // Shapes whose named material is an interface are dropped.
-  std::erase_if(scene_.shapes, [&](const ShapeDesc& s) { return !materials_.count(s.material); });
-}
-
-}  // namespace
+}  // namespace pbrt_detail
 
 SceneDesc parse_pbrt_scene(const std::string& text, const std::string& file_name,
                            const std::string& base_dir) {
-  PbrtParser parser(file_name, base_dir);
+  pbrt_detail::PbrtParser parser(file_name, base_dir);
   return parser.run(text, file_name);
 }
 
 SceneDesc load_pbrt_scene(const std::string& path) {
-  return parse_pbrt_scene(read_file_contents(path), path, fs::path(path).parent_path().string());
+  return parse_pbrt_scene(read_file_contents(path), path,
+                          std::filesystem::path(path).parent_path().string());
 }
 
 }  // namespace penumbra

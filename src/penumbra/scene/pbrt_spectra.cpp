@@ -128,6 +128,7 @@ Rgb pbrt_color(const PbrtParam& p, std::vector<std::string>& warnings) {
                "\": named spectra other than metal-*-eta/k and stdillum-* and spectrum files "
                "are not supported");
   }
+  if (p.numbers.size() == 1) return Rgb(float(p.numbers[0]));  // a constant spectrum
   // (wavelength, value) pairs: the mean value over the samples, as grey.
   double sum = 0;
   for (size_t i = 1; i < p.numbers.size(); i += 2) sum += p.numbers[i];

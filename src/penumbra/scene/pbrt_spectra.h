@@ -24,8 +24,8 @@ std::optional<Rgb> named_metal_rgb(const std::string& name, std::string* substit
 /// or nullopt.
 std::optional<float> named_glass_ior(const std::string& name);
 
-/// The value of a colour parameter (rgb, blackbody or spectrum) as RGB. A sampled spectrum is
-/// approximated by its mean with a warning; a named spectrum that is not a metal or illuminant,
+/// The value of a colour parameter (rgb, blackbody or spectrum) as RGB. A spectrum of one value
+/// is that constant; a sampled spectrum is approximated by its mean with a warning; a named spectrum that is not a metal or illuminant,
 /// or a spectrum file, is an error at the parameter.
 Rgb pbrt_color(const PbrtParam& p, std::vector<std::string>& warnings);
 
