@@ -137,6 +137,7 @@ TEST(PbrtMaterials, NamedMaterialsMayBeUsedBeforeTheyAreDefined) {
 TEST(PbrtMaterials, InterfaceShapesAreNotSurfaces) {
   const SceneDesc s = world("Material \"interface\"\nShape \"sphere\"\n");
   EXPECT_TRUE(s.shapes.empty());
+  EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: material \"interface\" marks medium boundaries"));
 }
 
 TEST(PbrtTextures, ConstantAndCheckerboardFeedMaterials) {
@@ -211,6 +212,51 @@ TEST(PbrtLights, PowerAndBlackbody) {
   const Rgb warm = blackbody_rgb(2700);
   EXPECT_GT(warm.r, warm.g);
   EXPECT_GT(warm.g, warm.b);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(PbrtMaterials, MixAndCoatedConductorTakeTheNearest) {
+  const SceneDesc s = test::pbrt_scene(
+      "WorldBegin\nMakeNamedMaterial \"a\" \"string type\" \"diffuse\" \"rgb reflectance\" [0.1 "
+      "0.2 "
+      "0.3]\nMakeNamedMaterial \"b\" \"string type\" \"conductor\"\n"
+      "MakeNamedMaterial \"m\" \"string type\" \"mix\" \"string materials\" [\"a\" \"b\"] "
+      "\"float amount\" 0.3\nNamedMaterial \"m\"\nShape \"sphere\"\n"
+      "Material \"coatedconductor\" \"spectrum conductor.eta\" \"metal-Ag-eta\" "
+      "\"spectrum conductor.k\" \"metal-Ag-k\" \"float interface.roughness\" 0.1\n"
+      "Shape \"sphere\"\n");
+  std::vector<const SceneParams*> m;
+  for (const ShapeDesc& sh : s.shapes)
+    for (const MaterialDesc& d : s.materials)
+      if (d.name == sh.material) m.push_back(&d.params);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_EQ(m[0]->type(), "diffuse");
+  EXPECT_EQ(m[0]->get_rgb("albedo", {}), Rgb(0.1f, 0.2f, 0.3f));
+  EXPECT_TRUE(test::has_warning(s, "test.pbrt:4:1: material \"mix\" rendered as its first"));
+  EXPECT_EQ(m[1]->type(), "conductor");
+  EXPECT_NEAR(m[1]->get_rgb("k", {}).r, 4.8283433f, 1e-6);  // silver
+  EXPECT_EQ(m[1]->get_float("roughness", 1), 0.0f);         // the coating's roughness is dropped
+  EXPECT_TRUE(test::has_warning(s, "test.pbrt:7:1: material \"coatedconductor\" rendered as"));
+  EXPECT_FALSE(test::has_warning(s, "unused"));
+}
+
+TEST(PbrtLights, IlluminanceAndBlackbodyAreaLights) {
+  const SceneDesc s = test::pbrt_scene(
+      "WorldBegin\nLightSource \"distant\" \"rgb L\" [1 1 1] \"float illuminance\" 5\n"
+      "LightSource \"infinite\" \"rgb L\" [2 2 2] \"float illuminance\" 3.14159265\n"
+      "AttributeBegin\nAreaLightSource \"diffuse\" \"blackbody L\" 2700 \"float scale\" 3\n"
+      "Shape \"sphere\"\nAttributeEnd\n");
+  EXPECT_EQ(s.lights[0].get_rgb("irradiance", {}), Rgb(5.0f));
+  const Rgb env = s.lights[1].get_rgb("radiance", {});
+  EXPECT_NEAR(env.g, 1.0f, 1e-6);  // E = pi L, normalised to luminance
+  const Rgb e = *s.shapes[0].emission;
+  EXPECT_NEAR(0.2126 * e.r + 0.7152 * e.g + 0.0722 * e.b, 3.0, 0.06);
+  EXPECT_GT(e.r, e.b);
 }
 
 }  // namespace

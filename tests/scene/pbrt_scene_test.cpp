@@ -272,3 +272,45 @@ TEST(PbrtShapes, PlyMeshThroughThePlyReader) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(PbrtOptions, MoreMappings) {
+  const SceneDesc s = test::pbrt_scene(
+      "Sampler \"independent\" \"integer pixelsamples\" 3 \"integer seed\" 7\n"
+      "PixelFilter \"gaussian\" \"float sigma\" 0.25 \"float xradius\" 1 \"float yradius\" 1\n"
+      "Integrator \"sppm\" \"integer maxdepth\" 4\nAccelerator \"kdtree\"\nWorldBegin\n");
+  EXPECT_EQ(s.render.sampler, "independent");
+  EXPECT_EQ(s.render.spp, 3);
+  EXPECT_EQ(s.render.seed, 7u);
+  EXPECT_EQ(s.render.filter, "gaussian:radius=1,sigma=0.25");
+  EXPECT_EQ(s.render.integrator, "sppm");
+  EXPECT_EQ(s.render.max_depth, 4);
+  EXPECT_EQ(s.render.accel, "kdtree");
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+}
+
+TEST(PbrtSyntax, UnclosedBlocksAndDeprecatedDirectives) {
+  const SceneDesc s = test::pbrt_scene(
+      "WorldBegin\nTransformBegin\nTransformEnd\nAttributeBegin\nShape \"sphere\"\n");
+  EXPECT_TRUE(test::has_warning(s, "test.pbrt:2:1: TransformBegin is deprecated"));
+  EXPECT_TRUE(test::has_warning(s, "test.pbrt:4:1: AttributeBegin without AttributeEnd"));
+  EXPECT_EQ(test::pbrt_error("WorldBegin\nWorldBegin"), "test.pbrt:2:1: WorldBegin given twice");
+  EXPECT_EQ(test::pbrt_error("WorldBegin\nObjectBegin \"a\"\n"),
+            "test.pbrt:2:1: ObjectBegin without ObjectEnd");
+}
+
+TEST(PbrtInclude, FallsBackToTheMainFilesDirectory) {
+  // pbrt-v4 resolves names against the main file's folder; an included file in sub/ may name a
+  // file next to the main one.
+  const test::TempDir dir;
+  std::filesystem::create_directories(dir.path() / "sub");
+  test::write_bytes(dir.file("main.pbrt"), "WorldBegin\nInclude \"sub/a.pbrt\"\n");
+  test::write_bytes(dir.file("sub/a.pbrt"), "Include \"shapes.pbrt\"\n");
+  test::write_bytes(dir.file("shapes.pbrt"), "Shape \"sphere\"\n");
+  EXPECT_EQ(load_scene(dir.file("main.pbrt")).shapes.size(), 1u);
+}
+
+}  // namespace
+}  // namespace penumbra

@@ -197,7 +197,13 @@ std::optional<json> map_pbrt_material(const PbrtEntity& e, const PbrtTextures& t
   auto nearest = [&](const std::string& what) {
     pbrt_warn(warnings, e.loc, "material \"" + t + "\" rendered as " + what + " (nearest)");
   };
-  if (t == "interface" || t == "" || t == "none") return std::nullopt;
+  if (t == "interface" || t == "" || t == "none") {
+    pbrt_warn(warnings, e.loc,
+              "material \"" + t +
+                  "\" marks medium boundaries, not surfaces: shapes with it are not "
+                  "imported");
+    return std::nullopt;
+  }
   if (t == "diffuse")
     return json{{"type", "diffuse"},
                 {"albedo", color_param(e, "reflectance", 0.5, tex, true, warnings)}};

@@ -48,7 +48,7 @@ void PbrtParser::add_material(const std::string& name, PbrtEntity e) {
     e.params.find("amount", "float texture");
     pbrt_warn(warnings(), e.loc,
               "material \"mix\" rendered as its first material \"" + p->strings[0] + "\"");
-    m = it->second;
+    if (!it->second.is_null()) m = it->second;  // (null: the first is an interface)
   } else {
     m = map_pbrt_material(e, textures_, warnings());
   }
