@@ -310,6 +310,16 @@ TEST(PbrtInclude, FallsBackToTheMainFilesDirectory) {
   test::write_bytes(dir.file("sub/a.pbrt"), "Include \"shapes.pbrt\"\n");
   test::write_bytes(dir.file("shapes.pbrt"), "Shape \"sphere\"\n");
   EXPECT_EQ(load_scene(dir.file("main.pbrt")).shapes.size(), 1u);
+  // A gzip-compressed include (pbrt-v4 reads *.pbrt.gz).
+  const std::string text = "Shape \"sphere\" \"float radius\" 4\n";
+  gzFile gz = gzopen(dir.file("sub/shapes.pbrt.gz").c_str(), "wb");
+  ASSERT_NE(gz, nullptr);
+  ASSERT_EQ(gzwrite(gz, text.data(), unsigned(text.size())), int(text.size()));
+  gzclose(gz);
+  test::write_bytes(dir.file("sub/a.pbrt"), "Include \"shapes.pbrt.gz\"\n");
+  const SceneDesc s = load_scene(dir.file("main.pbrt"));
+  ASSERT_EQ(s.shapes.size(), 1u);
+  EXPECT_EQ(std::get<SphereData>(s.shapes[0].geometry).radius, 4.0f);
 }
 
 }  // namespace

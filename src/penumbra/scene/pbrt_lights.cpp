@@ -93,6 +93,8 @@ PbrtAreaLight map_pbrt_area_light(const PbrtEntity& e, std::vector<std::string>&
     e.loc.fail("unknown AreaLightSource \"" + e.type + "\" (pbrt-v4 has: diffuse)");
   PbrtAreaLight a;
   a.radiance = emitted(e, "L", warnings);
+  if (a.radiance.r < 0 || a.radiance.g < 0 || a.radiance.b < 0)
+    e.loc.fail("area light radiance L * scale must not be negative");
   a.two_sided = e.params.get_bool("twosided", false);
   if (e.params.find("filename", "string"))
     pbrt_warn(warnings, e.loc, "image area lights (\"filename\") are not supported; L is used");

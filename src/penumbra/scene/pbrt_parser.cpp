@@ -79,9 +79,7 @@ void PbrtParser::include(const PbrtToken& t) {
   const std::string path = pbrt_resolve(name, {sources_.back().dir, base_dir_});
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) t.loc.fail(t.text + " file not found: " + path);
-  if (path.size() > 3 && path.ends_with(".gz"))
-    t.loc.fail(t.text + " of a gzip-compressed file is not supported: " + path);
-  sources_.push_back({std::make_unique<PbrtTokenizer>(read_file_contents(path), path),
+  sources_.push_back({std::make_unique<PbrtTokenizer>(pbrt_read_file(path, t.loc), path),
                       fs::path(path).parent_path().string()});
 }
 
@@ -137,24 +135,32 @@ void PbrtParser::directive(const PbrtToken& t) {
     e.params.report_unused(warnings(), e.what(d));
     return;
   }
+  if (reported_directive(t)) return;
+  t.loc.fail("unknown directive " + t.describe());
+}
+
+// Directives penumbra reads but does not represent: each is reported and skipped (their
+// arguments are consumed). False when `t` is none of them.
+bool PbrtParser::reported_directive(const PbrtToken& t) {
+  const std::string& d = t.text;
   if (d == "ColorSpace") {
     const std::string name = string_arg(t);
     if (name != "srgb")
       pbrt_warn(warnings(), t.loc,
                 "ColorSpace \"" + name + "\" not supported: rgb values are read as linear sRGB");
-    return;
+    return true;
   }
   if (d == "Option") {
     PbrtParams p = PbrtParams::parse(tok());
     for (const PbrtParam& o : p.all())
       pbrt_warn(warnings(), o.loc, "Option " + o.declaration() + " ignored");
-    return;
+    return true;
   }
   if (d == "Attribute") {
     PbrtEntity e = entity(t);
     pbrt_warn(warnings(), t.loc,
               "Attribute \"" + e.type + "\" (default parameters) is not supported; ignored");
-    return;
+    return true;
   }
   if (d == "MakeNamedMedium" || d == "MediumInterface") {
     if (d == "MakeNamedMedium") {
@@ -164,7 +170,7 @@ void PbrtParser::directive(const PbrtToken& t) {
       if (tok().peek().kind == Kind::kString) string_arg(t);
     }
     pbrt_warn(warnings(), t.loc, d + ": participating media are not supported; ignored");
-    return;
+    return true;
   }
   if (d == "ObjectBegin") {
     require_world(t, true);
@@ -175,25 +181,25 @@ void PbrtParser::directive(const PbrtToken& t) {
                   "\": object instancing is not supported yet; its shapes are skipped");
     stack_.push_back({gs_, false, t.loc});
     object_ = t.loc;
-    return;
+    return true;
   }
   if (d == "ObjectEnd") {
     if (!object_) t.loc.fail("ObjectEnd without ObjectBegin");
     object_.reset();
     attribute_end(t, false);
-    return;
+    return true;
   }
   if (d == "ObjectInstance") {
     require_world(t, true);
     const std::string name = string_arg(t);
     pbrt_warn(warnings(), t.loc,
               "ObjectInstance \"" + name + "\": object instancing is not supported yet; skipped");
-    return;
+    return true;
   }
   if (d == "TransformTimes") {
     numbers(t, 2);
     pbrt_warn(warnings(), t.loc, "TransformTimes: animated transforms are not supported; ignored");
-    return;
+    return true;
   }
   if (d == "ActiveTransform") {
     const PbrtToken w = tok().next();
@@ -203,9 +209,9 @@ void PbrtParser::directive(const PbrtToken& t) {
       pbrt_warn(warnings(), t.loc,
                 "ActiveTransform " + w.text +
                     ": animated transforms are not supported; both times get the same transform");
-    return;
+    return true;
   }
-  t.loc.fail("unknown directive " + t.describe());
+  return false;
 }
 
 bool PbrtParser::transform_directive(const PbrtToken& t) {

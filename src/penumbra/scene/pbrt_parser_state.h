@@ -62,6 +62,7 @@ class PbrtParser {
   void directive(const PbrtToken& t);
   void include(const PbrtToken& t);
   bool transform_directive(const PbrtToken& t);
+  bool reported_directive(const PbrtToken& t);
   void option_directive(const PbrtToken& t, std::optional<PbrtEntity>& slot);
   void world_begin(const PbrtToken& t);
   void attribute_end(const PbrtToken& t, bool transform_only);

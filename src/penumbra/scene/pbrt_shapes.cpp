@@ -7,6 +7,7 @@
 
 #include <zlib.h>
 
+#include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/ply_reader.h"
 #include "penumbra/scene/transform_parser.h"
 
@@ -127,27 +128,14 @@ std::vector<ShapeDesc> bilinear_mesh(const PbrtEntity& e, const PbrtShapeContext
   return out;
 }
 
-// The decompressed content of a gzip file (zlib's gzread).
-std::string gunzip(const std::string& path, const PbrtLoc& loc) {
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (!f) loc.fail("cannot open " + path);
-  std::string out;
-  char buf[1 << 16];
-  int n;
-  while ((n = gzread(f, buf, sizeof buf)) > 0) out.append(buf, size_t(n));
-  const bool ok = n == 0;
-  gzclose(f);
-  if (!ok) loc.fail("corrupt gzip data in " + path);
-  return out;
-}
-
 std::vector<ShapeDesc> ply_mesh(const PbrtEntity& e, const PbrtShapeContext& ctx) {
   const std::string name = e.params.get_string("filename", "");
   if (name.empty()) e.loc.fail("Shape \"plymesh\" needs \"string filename\"");
   const std::string path = pbrt_resolve(name, ctx.search_dirs);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) e.loc.fail("PLY file not found: " + path);
-  TriangleMesh mesh = path.ends_with(".gz") ? parse_ply(gunzip(path, e.loc), path) : read_ply(path);
+  TriangleMesh mesh =
+      path.ends_with(".gz") ? parse_ply(pbrt_read_file(path, e.loc), path) : read_ply(path);
   if (mesh.triangle_count() == 0) e.loc.fail("PLY file has no faces: " + path);
   orient(mesh, ctx.reverse_orientation);
   std::vector<ShapeDesc> out;
@@ -223,6 +211,20 @@ std::string pbrt_resolve(const std::string& file, const std::vector<std::string>
     if (fs::exists(candidate, ec)) return candidate.lexically_normal().string();
   }
   return (dirs.empty() || dirs[0].empty() ? p : fs::path(dirs[0]) / p).lexically_normal().string();
+}
+
+std::string pbrt_read_file(const std::string& path, const PbrtLoc& loc) {
+  if (!path.ends_with(".gz")) return read_file_contents(path);
+  gzFile f = gzopen(path.c_str(), "rb");
+  if (!f) loc.fail("cannot open " + path);
+  std::string out;
+  char buf[1 << 16];
+  int n;
+  while ((n = gzread(f, buf, sizeof buf)) > 0) out.append(buf, size_t(n));
+  const bool ok = n == 0;
+  gzclose(f);
+  if (!ok) loc.fail("corrupt gzip data in " + path);
+  return out;
 }
 
 std::vector<ShapeDesc> map_pbrt_shape(const PbrtEntity& e, const PbrtShapeContext& ctx,

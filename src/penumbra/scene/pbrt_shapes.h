@@ -23,6 +23,10 @@ struct PbrtShapeContext {
 std::vector<ShapeDesc> map_pbrt_shape(const PbrtEntity& shape, const PbrtShapeContext& context,
                                       std::vector<std::string>& warnings);
 
+/// The content of the file at `path`, decompressed with zlib when its name ends in ".gz"
+/// (pbrt-v4 scenes ship gzip-compressed meshes and scene files); errors at `loc`.
+std::string pbrt_read_file(const std::string& path, const PbrtLoc& loc);
+
 /// The first of `dirs` / `file` that exists (or `file` itself when absolute or none exists).
 std::string pbrt_resolve(const std::string& file, const std::vector<std::string>& dirs);
 
