@@ -98,8 +98,21 @@ TEST(PbrtMaterials, SpectrumValues) {
     for (const MaterialDesc& d : s.materials)
       if (d.name == sh.material) m.push_back(&d.params);
   EXPECT_EQ(m[0]->get_rgb("albedo", {}), Rgb(0.25f));
-  EXPECT_FLOAT_EQ(m[1]->get_rgb("albedo", {}).g, 0.4f);
-  EXPECT_TRUE(has_warning(s, "test.pbrt:4:20: sampled spectrum \"spectrum reflectance\""));
+  // Rising towards long wavelengths: reddish.
+  const Rgb rising = m[1]->get_rgb("albedo", {});
+  EXPECT_GT(rising.r, rising.g);
+  EXPECT_GT(rising.g, rising.b);
+  EXPECT_NEAR(rising.g, 0.4f, 0.1f);
+  // A flat reflectance is exactly grey; a light's spectrum is normalised to luminance 1.
+  const Rgb flat = sampled_spectrum_rgb({400, 0.3, 700, 0.3}, false);
+  EXPECT_NEAR(flat.r, 0.3f, 1e-6);
+  EXPECT_NEAR(flat.g, 0.3f, 1e-6);
+  EXPECT_NEAR(flat.b, 0.3f, 1e-6);
+  const Rgb light = sampled_spectrum_rgb({300, 5, 900, 5}, true);
+  EXPECT_NEAR(0.2126 * light.r + 0.7152 * light.g + 0.0722 * light.b, 1.0, 1e-3);
+  EXPECT_TRUE(s.warnings.empty());
+  EXPECT_EQ(pbrt_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" [500 1 400 1]"),
+            "test.pbrt:2:20: parameter \"spectrum reflectance\": wavelengths must increase");
   EXPECT_EQ(pbrt_error("WorldBegin\nMaterial \"diffuse\" \"spectrum reflectance\" \"unobtainium\""),
             "test.pbrt:2:20: spectrum \"unobtainium\": named spectra other than metal-*-eta/k and "
             "stdillum-* and spectrum files are not supported");

@@ -27,7 +27,7 @@ double luminance(Rgb c) {
 // linear sRGB, so an rgb value is taken as it is.
 Rgb emitted(const PbrtEntity& e, const std::string& name, std::vector<std::string>& warnings) {
   const PbrtParam* p = e.params.find(name, "rgb spectrum blackbody");
-  const Rgb c = p ? pbrt_color(*p, warnings) : Rgb(1.0f);
+  const Rgb c = p ? pbrt_color(*p, true, warnings) : Rgb(1.0f);
   const double s = e.params.get_float("scale", 1.0);
   return c * float(s);
 }

@@ -25,7 +25,7 @@ json color_param(const PbrtEntity& e, const std::string& name, const json& fallb
                  std::vector<std::string>& warnings) {
   const PbrtParam* p = e.params.find(name, "rgb spectrum blackbody float texture");
   if (!p) return fallback;
-  if (p->type != "texture") return rgb_json(pbrt_color(*p, warnings));
+  if (p->type != "texture") return rgb_json(pbrt_color(*p, false, warnings));
   const auto it = textures.find(p->strings.at(0));
   if (it == textures.end()) p->loc.fail("unknown texture \"" + p->strings[0] + "\"");
   const json& v = it->second.value;
@@ -95,7 +95,7 @@ double ior_param(const PbrtEntity& e, const PbrtTextures& tex, std::vector<std::
               "\"" + p->strings[0] + "\" taken at 587.6 nm (ior " +
                   std::to_string(ior).substr(0, 6) + "): penumbra renders no dispersion");
   } else {
-    ior = pbrt_color(*p, warnings).g;
+    ior = pbrt_color(*p, false, warnings).g;
   }
   if (!(ior > 0 && ior < 100)) p->loc.fail("eta must lie in (0, 100)");
   return ior;

@@ -50,24 +50,69 @@ const std::map<std::string, ComplexIor>& metals() {
   return m;
 }
 
-}  // namespace
-
-Rgb blackbody_rgb(double kelvin) {
-  // Planck's law integrated against the colour matching functions, 360-830 nm in 1 nm steps.
+// Planck's law: spectral radiance of a blackbody at `kelvin`, at `nm` nanometres (any unit).
+double planck(double nm, double kelvin) {
   constexpr double c = 299792458.0, h = 6.62606957e-34, kb = 1.3806488e-23;
-  double X = 0, Y = 0, Z = 0;
-  for (int nm = 360; nm <= 830; ++nm) {
-    const double l = nm * 1e-9;
-    const double b = 2 * h * c * c / (std::pow(l, 5) * (std::exp(h * c / (l * kb * kelvin)) - 1));
-    double x, y, z;
-    cie_xyz(nm, x, y, z);
-    X += b * x, Y += b * y, Z += b * z;
-  }
-  X /= Y, Z /= Y, Y = 1.0;
-  // XYZ to linear sRGB (IEC 61966-2-1, D65 white).
+  const double l = nm * 1e-9;
+  return 2 * h * c * c / (std::pow(l, 5) * (std::exp(h * c / (l * kb * kelvin)) - 1));
+}
+
+// XYZ to linear sRGB (IEC 61966-2-1, D65 white).
+Rgb xyz_to_rgb(double X, double Y, double Z) {
   return {float(3.2404542 * X - 1.5371385 * Y - 0.4985314 * Z),
           float(-0.9692660 * X + 1.8760108 * Y + 0.0415560 * Z),
           float(0.0556434 * X - 0.2040259 * Y + 1.0572252 * Z)};
+}
+
+// Linear sRGB of the spectrum f(nm), integrated against the matching functions over 360-830 nm
+// in 1 nm steps; `y` receives the luminance integral.
+template <class F>
+Rgb spectrum_rgb(F f, double& y) {
+  double X = 0, Y = 0, Z = 0;
+  for (int nm = 360; nm <= 830; ++nm) {
+    const double v = f(double(nm));
+    double x, yy, z;
+    cie_xyz(nm, x, yy, z);
+    X += v * x, Y += v * yy, Z += v * z;
+  }
+  y = Y;
+  return xyz_to_rgb(X, Y, Z);
+}
+
+// A piecewise-linear spectrum through (wavelength, value) pairs, constant beyond its ends.
+double sampled(const std::vector<double>& pairs, double nm) {
+  const size_t n = pairs.size() / 2;
+  if (nm <= pairs[0]) return pairs[1];
+  for (size_t i = 1; i < n; ++i) {
+    const double l0 = pairs[2 * i - 2], l1 = pairs[2 * i];
+    if (nm <= l1) {
+      const double t = l1 > l0 ? (nm - l0) / (l1 - l0) : 1.0;
+      return pairs[2 * i - 1] + t * (pairs[2 * i + 1] - pairs[2 * i - 1]);
+    }
+  }
+  return pairs[2 * n - 1];
+}
+
+}  // namespace
+
+Rgb blackbody_rgb(double kelvin) {
+  double y;
+  const Rgb c = spectrum_rgb([&](double nm) { return planck(nm, kelvin); }, y);
+  return c * float(1.0 / y);
+}
+
+Rgb sampled_spectrum_rgb(const std::vector<double>& pairs, bool illuminant) {
+  double y;
+  const Rgb c = spectrum_rgb([&](double nm) { return sampled(pairs, nm); }, y);
+  if (illuminant) return y > 0 ? c * float(1.0 / y) : Rgb(0.0f);
+  // A reflectance seen under a white light (a 6504 K blackbody, the colour temperature of
+  // D65), divided channel by channel by the light's own colour, so a flat spectrum of value v is
+  // exactly (v, v, v).
+  double yw, yr;
+  const Rgb white = spectrum_rgb([&](double nm) { return planck(nm, 6504.0); }, yw);
+  const Rgb lit =
+      spectrum_rgb([&](double nm) { return sampled(pairs, nm) * planck(nm, 6504.0); }, yr);
+  return {lit.r / white.r, lit.g / white.g, lit.b / white.b};
 }
 
 std::optional<Rgb> named_metal_rgb(const std::string& name, std::string* substitute) {
@@ -99,7 +144,7 @@ std::optional<float> named_glass_ior(const std::string& name) {
   return it->second;
 }
 
-Rgb pbrt_color(const PbrtParam& p, std::vector<std::string>& warnings) {
+Rgb pbrt_color(const PbrtParam& p, bool illuminant, std::vector<std::string>& warnings) {
   if (p.type == "rgb") {
     if (p.numbers.size() != 3)
       p.loc.fail("parameter " + p.declaration() + " takes 3 values, got " +
@@ -129,14 +174,11 @@ Rgb pbrt_color(const PbrtParam& p, std::vector<std::string>& warnings) {
                "are not supported");
   }
   if (p.numbers.size() == 1) return Rgb(float(p.numbers[0]));  // a constant spectrum
-  // (wavelength, value) pairs: the mean value over the samples, as grey.
-  double sum = 0;
-  for (size_t i = 1; i < p.numbers.size(); i += 2) sum += p.numbers[i];
-  const float mean = float(sum / double(p.numbers.size() / 2));
-  pbrt_warn(warnings, p.loc,
-            "sampled spectrum " + p.declaration() + " approximated by its mean value " +
-                std::to_string(mean) + " (grey)");
-  return Rgb(mean);
+  // (wavelength, value) pairs, in increasing wavelength.
+  for (size_t i = 2; i < p.numbers.size(); i += 2)
+    if (p.numbers[i] < p.numbers[i - 2])
+      p.loc.fail("parameter " + p.declaration() + ": wavelengths must increase");
+  return sampled_spectrum_rgb(p.numbers, illuminant);
 }
 
 }  // namespace penumbra

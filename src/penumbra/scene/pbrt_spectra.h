@@ -24,9 +24,16 @@ std::optional<Rgb> named_metal_rgb(const std::string& name, std::string* substit
 /// or nullopt.
 std::optional<float> named_glass_ior(const std::string& name);
 
-/// The value of a colour parameter (rgb, blackbody or spectrum) as RGB. A spectrum of one value
-/// is that constant; a sampled spectrum is approximated by its mean with a warning; a named spectrum that is not a metal or illuminant,
-/// or a spectrum file, is an error at the parameter.
-Rgb pbrt_color(const PbrtParam& p, std::vector<std::string>& warnings);
+/// Linear sRGB of a piecewise-linear spectrum given as (wavelength in nm, value) pairs: an
+/// `illuminant` is normalised to luminance Y = 1 (as pbrt-v4 normalises light spectra); a
+/// reflectance is its colour under a 6504 K blackbody divided by that light's colour, so that a
+/// flat spectrum of value v gives exactly (v, v, v).
+Rgb sampled_spectrum_rgb(const std::vector<double>& pairs, bool illuminant);
+
+/// The value of a colour parameter (rgb, blackbody, float or spectrum) as RGB; `illuminant` for
+/// the spectra of lights (see sampled_spectrum_rgb). A spectrum of one value is that constant. A
+/// named spectrum other than a metal's or stdillum-*, or a spectrum file, is an error at the
+/// parameter.
+Rgb pbrt_color(const PbrtParam& p, bool illuminant, std::vector<std::string>& warnings);
 
 }  // namespace penumbra
