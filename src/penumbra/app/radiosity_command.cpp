@@ -34,6 +34,7 @@ int run_radiosity(const RadiosityArgs& args) {
                 "' does not end in .ply");
   const ThreadLimit limit(args.threads.value_or(0));
   SceneDesc desc = load_scene(args.scene);
+  for (const std::string& w : desc.warnings) fmt::print(stderr, "warning: {}\n", w);
   // The scene's radiosity parameters, or the defaults, or --integrator's.
   if (args.integrator) {
     desc.render.integrator = *args.integrator;

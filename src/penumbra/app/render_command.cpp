@@ -129,6 +129,7 @@ int run_render(const RenderArgs& args) {
   const ThreadLimit limit(args.threads.value_or(0));
 
   SceneDesc desc = load_scene(args.scene);
+  for (const std::string& w : desc.warnings) fmt::print(stderr, "warning: {}\n", w);
   RenderSettings& rs = desc.render;
   if (args.spp) rs.spp = *args.spp;
   if (args.seed) rs.seed = *args.seed;

@@ -1,5 +1,6 @@
 #include "penumbra/scene/scene_loader.h"
 
+#include <cctype>
 #include <climits>
 #include <filesystem>
 #include <set>
@@ -7,6 +8,7 @@
 
 #include "penumbra/scene/json_value.h"
 #include "penumbra/scene/mesh_reader.h"
+#include "penumbra/scene/pbrt_parser.h"
 #include "penumbra/scene/shape_parser.h"
 
 namespace penumbra {
@@ -121,6 +123,10 @@ SceneDesc parse_scene(const std::string& json_text, const std::string& file_name
 }
 
 SceneDesc load_scene(const std::string& path) {
+  // pbrt-v4 scene files by their extension (any case); JSON for everything else.
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".pbrt") return load_pbrt_scene(path);
   const std::string text = read_file_contents(path);
   return parse_scene(text, path, std::filesystem::path(path).parent_path().string());
 }

@@ -1,0 +1,106 @@
+#include "penumbra/scene/pbrt_lights.h"
+
+#include <numbers>
+
+#include "penumbra/scene/pbrt_spectra.h"
+
+namespace penumbra {
+
+namespace {
+
+using nlohmann::json;
+
+json rgb_json(Rgb c) {
+  return json::array({c.r, c.g, c.b});
+}
+json vec_json(Vec3 v) {
+  return json::array({v.x, v.y, v.z});
+}
+
+// Luminance of linear sRGB (Rec. 709 weights).
+double luminance(Rgb c) {
+  return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b;
+}
+
+// The spectrum parameter `name` as RGB (white when absent), times "scale". pbrt-v4 normalises an
+// RGB or blackbody light spectrum to its luminance and renders "rgb L [1 1 1]" as (1, 1, 1) in
+// linear sRGB, so an rgb value is taken as it is.
+Rgb emitted(const PbrtEntity& e, const std::string& name, std::vector<std::string>& warnings) {
+  const PbrtParam* p = e.params.find(name, "rgb spectrum blackbody");
+  const Rgb c = p ? pbrt_color(*p, true, warnings) : Rgb(1.0f);
+  const double s = e.params.get_float("scale", 1.0);
+  return c * float(s);
+}
+
+// `c` rescaled to luminance `target` (pbrt's "power", "illuminance"), when that is given (> 0).
+Rgb photometric(const PbrtEntity& e, Rgb c, const char* param, double per_unit) {
+  const double target = e.params.get_float(param, -1);
+  if (!(target > 0)) return c;
+  const double y = luminance(c);
+  if (!(y > 0)) e.loc.fail(std::string("\"") + param + "\" needs a light with a non-black colour");
+  return c * float(target / (per_unit * y));
+}
+
+}  // namespace
+
+std::optional<json> map_pbrt_light(const PbrtEntity& e, const Transform& to_world,
+                                   std::vector<std::string>& warnings) {
+  const std::string& t = e.type;
+  if (t == "point") {
+    Rgb i = photometric(e, emitted(e, "I", warnings), "power", 4 * std::numbers::pi);
+    const Vec3 from = e.params.get_vec3("from").value_or(Vec3(0.0f));
+    return json{{"type", "point"},
+                {"position", vec_json(to_world.point(from))},
+                {"intensity", rgb_json(i)}};
+  }
+  if (t == "distant") {
+    Rgb l = photometric(e, emitted(e, "L", warnings), "illuminance", 1.0);
+    const Vec3 from = e.params.get_vec3("from").value_or(Vec3(0.0f));
+    const Vec3 to = e.params.get_vec3("to").value_or(Vec3(0, 0, 1));
+    const Vec3 d = to_world.vector(to - from);
+    if (!(length(d) > 0)) e.loc.fail("distant light: \"from\" and \"to\" coincide");
+    return json{{"type", "directional"}, {"direction", vec_json(d)}, {"irradiance", rgb_json(l)}};
+  }
+  if (t == "infinite") {
+    const std::string file = e.params.get_string("filename", "");
+    e.params.find("portal", "point3");
+    Rgb l;
+    if (!file.empty()) {
+      l = Rgb(float(e.params.get_float("scale", 1.0)));
+      if (e.params.has("L")) e.loc.fail("infinite light: give either \"L\" or \"filename\"");
+      pbrt_warn(warnings, e.loc,
+                "infinite light map \"" + file +
+                    "\" not read (pbrt-v4 maps use the equal-area octahedral layout, penumbra's "
+                    "environment light reads equirectangular maps); a constant environment of "
+                    "radiance \"scale\" is used instead");
+    } else {
+      // Illuminance E of an upward surface under a constant sky of radiance L: E = pi L.
+      l = photometric(e, emitted(e, "L", warnings), "illuminance", std::numbers::pi);
+    }
+    return json{{"type", "environment"}, {"radiance", rgb_json(l)}};
+  }
+  if (t == "spot" || t == "goniometric" || t == "projection") {
+    pbrt_warn(warnings, e.loc, "LightSource \"" + t + "\" is not supported by penumbra; skipped");
+    for (const PbrtParam& p : e.params.all()) p.used = true;
+    return std::nullopt;
+  }
+  e.loc.fail("unknown LightSource \"" + t +
+             "\" (pbrt-v4 has: distant, goniometric, infinite, point, projection, spot)");
+}
+
+PbrtAreaLight map_pbrt_area_light(const PbrtEntity& e, std::vector<std::string>& warnings) {
+  if (e.type != "diffuse")
+    e.loc.fail("unknown AreaLightSource \"" + e.type + "\" (pbrt-v4 has: diffuse)");
+  PbrtAreaLight a;
+  a.radiance = emitted(e, "L", warnings);
+  if (a.radiance.r < 0 || a.radiance.g < 0 || a.radiance.b < 0)
+    e.loc.fail("area light radiance L * scale must not be negative");
+  a.two_sided = e.params.get_bool("twosided", false);
+  if (e.params.find("filename", "string"))
+    pbrt_warn(warnings, e.loc, "image area lights (\"filename\") are not supported; L is used");
+  if (e.params.find("power", "float"))
+    pbrt_warn(warnings, e.loc, "area light \"power\" is not supported; L and scale are used");
+  return a;
+}
+
+}  // namespace penumbra

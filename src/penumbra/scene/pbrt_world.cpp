@@ -1,0 +1,124 @@
+/// The world block of a pbrt scene: shapes with their material and area light, materials, textures,
+/// light sources, and the checks at the end of the file.
+#include <algorithm>
+
+#include "penumbra/scene/pbrt_parser_state.h"
+#include "penumbra/scene/pbrt_shapes.h"
+
+namespace penumbra::pbrt_detail {
+
+std::string PbrtParser::default_material() {
+  if (!materials_.count(kDefaultMaterial))
+    scene_.materials.push_back(
+        {kDefaultMaterial, SceneParams(nlohmann::json{{"type", "diffuse"}, {"albedo", 0.5}},
+                                       scene_.file, "/pbrt-default")});
+  materials_.emplace(kDefaultMaterial, scene_.materials.size() - 1);
+  return kDefaultMaterial;
+}
+
+void PbrtParser::shape(const PbrtToken& t) {
+  require_world(t, true);
+  PbrtEntity e = entity(t);
+  if (object_) return;                     // instancing: reported at ObjectBegin
+  if (gs_.material == kInterface) return;  // an interface material has no surface
+  PbrtShapeContext ctx{
+      world_from_pbrt_ * gs_.ctm, gs_.reverse_orientation, {sources_.back().dir, base_dir_}};
+  std::vector<ShapeDesc> shapes = map_pbrt_shape(e, ctx, warnings());
+  e.params.report_unused(warnings(), e.what("Shape"));
+  const std::string mat = gs_.material.empty() ? default_material() : gs_.material;
+  for (ShapeDesc& s : shapes) {
+    s.material = mat;
+    s.path = e.loc.str();
+    if (gs_.area_light && !gs_.area_light->radiance.is_black()) {
+      s.emission = gs_.area_light->radiance;
+      s.two_sided_emission = gs_.area_light->two_sided;
+    }
+    scene_.shapes.push_back(std::move(s));
+  }
+}
+
+void PbrtParser::add_material(const std::string& name, PbrtEntity e) {
+  std::optional<nlohmann::json> m;
+  if (e.type == "mix") {
+    // The nearest of a mix is its first material (penumbra has no stochastic mix).
+    const PbrtParam* p = e.params.find("materials", "string");
+    if (!p || p->strings.size() != 2) e.loc.fail("mix needs \"string materials\" [two names]");
+    const auto it = material_json_.find(p->strings[0]);
+    if (it == material_json_.end()) p->loc.fail("unknown material \"" + p->strings[0] + "\"");
+    e.params.find("amount", "float texture");
+    pbrt_warn(warnings(), e.loc,
+              "material \"mix\" rendered as its first material \"" + p->strings[0] + "\"");
+    if (!it->second.is_null()) m = it->second;  // (null: the first is an interface)
+  } else {
+    m = map_pbrt_material(e, textures_, warnings());
+  }
+  e.params.report_unused(warnings(), "material \"" + e.type + "\"");
+  if (!m) {  // interface: shapes with it are skipped
+    material_json_[name] = nlohmann::json();
+    return;
+  }
+  material_json_[name] = *m;
+  scene_.materials.push_back({name, SceneParams(*m, e.loc.str(), "")});
+  materials_[name] = scene_.materials.size() - 1;
+}
+
+void PbrtParser::material(const PbrtToken& t) {
+  require_world(t, true);
+  PbrtEntity e = entity(t);
+  const std::string name = "material@" + e.loc.str();
+  add_material(name, std::move(e));
+  gs_.material = materials_.count(name) ? name : std::string(kInterface);
+}
+
+void PbrtParser::make_named_material(const PbrtToken& t) {
+  require_world(t, true);
+  const std::string name = string_arg(t);
+  PbrtEntity e;
+  e.loc = t.loc;
+  e.params = PbrtParams::parse(tok());
+  if (material_json_.count(name)) t.loc.fail("named material \"" + name + "\" redefined");
+  e.type = e.params.get_string("type", "");
+  if (e.type.empty()) t.loc.fail("MakeNamedMaterial \"" + name + "\" needs a \"string type\"");
+  add_material(name, std::move(e));
+}
+
+void PbrtParser::texture(const PbrtToken& t) {
+  require_world(t, true);
+  const std::string name = string_arg(t);
+  const std::string value_type = string_arg(t);
+  if (value_type != "spectrum" && value_type != "float")
+    t.loc.fail("Texture \"" + name + "\": type must be \"spectrum\" or \"float\", got \"" +
+               value_type + "\"");
+  PbrtEntity e = entity(t);
+  if (textures_.count(name))
+    pbrt_warn(warnings(), t.loc, "texture \"" + name + "\" redefined; the new one is used");
+  textures_[name] = map_pbrt_texture(value_type, e, textures_, warnings());
+  e.params.report_unused(warnings(), e.what("Texture"));
+}
+
+void PbrtParser::light(const PbrtToken& t) {
+  require_world(t, true);
+  PbrtEntity e = entity(t);
+  std::optional<nlohmann::json> l = map_pbrt_light(e, world_from_pbrt_ * gs_.ctm, warnings());
+  e.params.report_unused(warnings(), e.what("LightSource"));
+  if (l) {
+    scene_.lights.emplace_back(*l, e.loc.str(), "");
+  }
+}
+
+void PbrtParser::finish() {
+  if (!in_world_) {
+    pbrt_warn(warnings(), {scene_.file, 1, 1}, "no WorldBegin: the scene is empty");
+    map_pbrt_options(options_, world_from_pbrt_, scene_);
+  }
+  if (!stack_.empty())
+    pbrt_warn(warnings(), stack_.back().loc, "AttributeBegin without AttributeEnd at the end");
+  if (object_) object_->fail("ObjectBegin without ObjectEnd");
+  // Named materials may be defined after their first use (pbrt resolves them at the end).
+  for (const auto& [name, loc] : referenced_)
+    if (!material_json_.count(name)) loc.fail("NamedMaterial: unknown material \"" + name + "\"");
+  // Shapes whose named material is an interface are dropped.
+  std::erase_if(scene_.shapes, [&](const ShapeDesc& s) { return !materials_.count(s.material); });
+}
+
+}  // namespace penumbra::pbrt_detail
