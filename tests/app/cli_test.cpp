@@ -137,6 +137,21 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   EXPECT_NE(err_.find("valid:"), std::string::npos) << err_;
 }
 
+// Meshes that would give NaN statistics or trip Embree are refused before any build, naming
+// the file and the vertex; collide checks its meshes the same way.
+TEST_F(CliTest, AccelBenchAndCollideRefuseEmptyAndOutOfRangeMeshes) {
+  write("empty.obj", "v 0 0 0\nv 1 0 0\n");
+  EXPECT_NE(run("accel-bench " + path("empty.obj") + " --accel bvh --rays 100"), 0);
+  EXPECT_NE(err_.find("empty.obj: the mesh has no triangles"), std::string::npos) << err_;
+  write("huge.obj", "v 0 0 0\nv 1e20 0 0\nv 0 1 0\nf 1 2 3\n");
+  EXPECT_NE(run("accel-bench " + path("huge.obj") + " --accel bvh --rays 100"), 0);
+  EXPECT_NE(err_.find("huge.obj:vertex 1: (1e+20, 0, 0)"), std::string::npos) << err_;
+  EXPECT_NE(run("collide " + path("huge.obj") + " --sphere 0,0,0,1"), 0);
+  EXPECT_NE(err_.find("huge.obj:vertex 1"), std::string::npos) << err_;
+  EXPECT_NE(run("collide " + path("empty.obj") + " --sphere 0,0,0,1"), 0);
+  EXPECT_NE(err_.find("no triangles"), std::string::npos) << err_;
+}
+
 // --repeat N takes medians of N runs; with Embree each structure also gets the median ratio of
 // its incoherent throughput to Embree's over runs paired with one of Embree's.
 TEST_F(CliTest, AccelBenchRepeatsAndPairsRunsWithEmbree) {

@@ -17,6 +17,7 @@
 #include "penumbra/app/accel_bench_table.h"
 #include "penumbra/app/bench_rays.h"
 #include "penumbra/app/embree_scene.h"
+#include "penumbra/app/mesh_check.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
@@ -272,6 +273,7 @@ void run_accel_bench(const AccelBenchArgs& args) {
       args.input.size() >= 5 && args.input.substr(args.input.size() - 5) == ".json";
   const TriangleMesh mesh =
       is_scene ? scene_triangles(load_scene(args.input)) : read_mesh(args.input);
+  check_mesh_input(mesh, args.input);
   PrimitiveSet prims;
   prims.add_mesh(mesh, Transform(), 0);
   fmt::print("{}: {} triangles, loaded in {:.0f} ms; builds on {} thread(s), rays traced on {}\n",

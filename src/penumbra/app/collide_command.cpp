@@ -14,6 +14,7 @@
 
 #include "penumbra/accel/collision/collision.h"
 #include "penumbra/accel/collision/collision_brute.h"
+#include "penumbra/app/mesh_check.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
@@ -208,6 +209,8 @@ void run_collide(const CollideArgs& args) {
   const Timer load;
   const TriangleMesh mesh_a = read_mesh(args.mesh_a);
   const TriangleMesh mesh_b = args.mesh_b.empty() ? TriangleMesh() : read_mesh(args.mesh_b);
+  check_mesh_input(mesh_a, args.mesh_a);
+  if (!args.mesh_b.empty()) check_mesh_input(mesh_b, args.mesh_b);
   fmt::print("loaded in {:.0f} ms; builds on {} thread(s), queries on one\n", load.elapsed_ms(),
              thread_count());
   const CollisionMesh a(mesh_a);

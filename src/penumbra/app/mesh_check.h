@@ -1,0 +1,15 @@
+#pragma once
+/// Input checks of the meshes that accel-bench and collide read directly (the renderer's World
+/// makes the same checks on scenes).
+#include <string>
+
+#include "penumbra/geometry/triangle_mesh.h"
+
+namespace penumbra {
+
+/// Throws InputError naming `file` when `mesh` has no triangles, or when a vertex that a
+/// triangle uses is NaN, infinite or beyond kMaxCoordinate (naming the vertex and its value):
+/// such meshes gave NaN statistics, and Embree asserts on coordinates above about 1e18.
+void check_mesh_input(const TriangleMesh& mesh, const std::string& file);
+
+}  // namespace penumbra
