@@ -44,6 +44,22 @@ TEST_F(RenderCli, PathTracesTheCornellBoxAndReportsItsRates) {
     EXPECT_NE(err_.find(what), std::string::npos) << what << "\n" << err_;
 }
 
+// An output that cannot be written is refused before the render starts (it used to be found
+// only after the whole render), and nothing is created.
+TEST_F(RenderCli, UnwritableOutputIsRefusedBeforeRendering) {
+  const std::string cb = scene("cornell-box.json") + " --spp 4096 --quiet";
+  EXPECT_NE(run("render " + cb + " -o " + path("missing/dir/out.png")), 0);
+  EXPECT_NE(err_.find("directory '" + path("missing/dir") + "' does not exist"), std::string::npos)
+      << err_;
+  EXPECT_EQ(err_.find("render "), std::string::npos) << err_;  // no render summary
+  write("file", "x");
+  EXPECT_NE(run("render " + cb + " -o " + path("file/out.exr")), 0);
+  EXPECT_NE(err_.find("is not a directory"), std::string::npos) << err_;
+  EXPECT_NE(run("render " + cb + " -o " + path("a.pfm") + " --variance " + path("no/v.pfm")), 0);
+  EXPECT_NE(err_.find("does not exist"), std::string::npos) << err_;
+  EXPECT_FALSE(std::filesystem::exists(path("a.pfm")));
+}
+
 TEST_F(RenderCli, TimeLimitStopsAndReportsTheSppReached) {
   ASSERT_EQ(run("render " + scene("cornell-box.json") +
                 " --resolution 32x32 --spp 1000000 --time-limit 1 -o " + path("out.pfm")),

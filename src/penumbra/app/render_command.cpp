@@ -119,12 +119,14 @@ void add_render_command(CLI::App& app) {
 
 int run_render(const RenderArgs& args) {
   const Timer wall;
-  // Reject bad output names before any work.
+  // Reject bad output names and unwritable places before any work.
   image_format_for(args.output);
+  check_writable(args.output);
   if (args.variance) {
     if (image_format_for(*args.variance) == ImageFormat::kPng)
       throw Error("--variance: the variance image needs a float format (.exr or .pfm), got '" +
                   *args.variance + "'");
+    check_writable(*args.variance);
   }
   const ThreadLimit limit(args.threads.value_or(0));
 

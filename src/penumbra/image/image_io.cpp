@@ -24,6 +24,20 @@ std::string temp_path_for(const std::string& path) {
 
 }  // namespace
 
+void check_writable(const std::string& path) {
+  namespace fs = std::filesystem;
+  const fs::path p(path);
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  std::error_code ec;
+  if (!fs::exists(dir, ec))
+    throw Error("cannot write '" + path + "': directory '" + dir.string() + "' does not exist");
+  if (!fs::is_directory(dir, ec))
+    throw Error("cannot write '" + path + "': '" + dir.string() + "' is not a directory");
+  if (fs::is_directory(p, ec)) throw Error("cannot write '" + path + "': it is a directory");
+  if (::access(dir.c_str(), W_OK) != 0)
+    throw Error("cannot write '" + path + "': directory '" + dir.string() + "' is not writable");
+}
+
 ImageFormat image_format_for(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),

@@ -13,6 +13,10 @@ enum class ImageFormat { kPng, kExr, kPfm };
 /// The format named by path's extension (.png, .exr, .pfm; any case); throws Error listing the
 /// valid extensions for any other.
 ImageFormat image_format_for(const std::string& path);
+/// Throws Error when an image could not be written to `path` later: its directory is missing,
+/// not a directory, or not writable, or `path` is a directory. Called before a render starts, so
+/// a typo in the output path costs nothing.
+void check_writable(const std::string& path);
 
 /// Runs write(temp_path) on a temporary file beside path, then renames it onto path, so path is
 /// either untouched or complete. If write or the rename throws, the temporary file is removed and
