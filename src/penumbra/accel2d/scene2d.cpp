@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <charconv>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/input_file.h"
+#include "penumbra/core/text_escape.h"
 #include "penumbra/geometry/convex_polygon2d.h"
 
 namespace penumbra::lab2d {
@@ -56,7 +56,8 @@ double number(std::string_view w, const std::string& name, int line) {
   double v = 0;
   const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
   if (ec != std::errc() || end != w.data() + w.size() || !std::isfinite(v))
-    throw InputError(name, std::to_string(line), fmt::format("'{}' is not a finite number", w));
+    throw InputError(name, std::to_string(line),
+                     fmt::format("'{}' is not a finite number", escape_for_message(w)));
   return v;
 }
 
@@ -92,6 +93,7 @@ void check_shapes(Scene2D& scene) {
 Scene2D parse_scene2d(std::string_view text, const std::string& name) {
   Scene2D scene;
   scene.source = name;
+  if (const auto why = describe_non_text(text)) throw InputError(name, "", *why);
   int line_no = 0;
   while (!text.empty()) {
     const size_t nl = text.find('\n');
@@ -130,12 +132,7 @@ Scene2D parse_scene2d(std::string_view text, const std::string& name) {
 }
 
 Scene2D load_scene2d(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Error(path + ": read error");
-  return parse_scene2d(ss.str(), path);
+  return parse_scene2d(read_input_file(path), path);
 }
 
 void check_disjoint(const Scene2D& scene, bool segments_only) {

@@ -51,7 +51,7 @@ struct Scene2D {
 /// Parses the text format; `name` names the input in errors ("NAME:LINE: problem").
 Scene2D parse_scene2d(std::string_view text, const std::string& name);
 
-/// Reads and parses the file at path; throws Error when it cannot be read.
+/// Reads (read_input_file) and parses the file at path; throws InputError when it cannot be read.
 Scene2D load_scene2d(const std::string& path);
 
 /// Throws InputError naming both lines when two shapes meet: segments that cross, touch or overlap
