@@ -106,6 +106,24 @@ TEST(DecodeMemory, FuzzExrAttributeLargerThanTheFileIsRefused) {
   EXPECT_NE(m.find("bytes, but only"), std::string::npos) << m;
 }
 
+// Fuzz finding (fuzz_png): a 74-byte file whose tEXt chunk claims 1.2 GB; libpng allocated it
+// (the chunk malloc limit does not cover text chunks). The chunks are now walked first.
+TEST(DecodeMemory, FuzzPngChunkLongerThanTheFileIsRefused) {
+  const std::string file = std::string(PENUMBRA_TEST_DATA) + "/fuzz/png-text-1200mb-chunk.png";
+  const std::string m = message_of([&] { decode_png(slurp(file), "f.png"); });
+  EXPECT_NE(m.find("f.png:byte 33: chunk 'tEXt' declares 1256361531 bytes, but only"),
+            std::string::npos)
+      << m;
+}
+
+// Fuzz finding (fuzz_exr): a channel list that runs past its declared size made OpenEXR read
+// the rest of the header out of step, into an unknown attribute of 1.7 GB.
+TEST(DecodeMemory, FuzzExrChannelListOverrunIsRefused) {
+  const std::string file = std::string(PENUMBRA_TEST_DATA) + "/fuzz/exr-channel-list-overrun.exr";
+  const std::string m = message_of([&] { decode_exr(slurp(file), "f.exr"); });
+  EXPECT_NE(m.find("f.exr:byte "), std::string::npos) << m;
+}
+
 TEST(DecodeMemory, ExrDataWindowAboveTheLimitIsRefusedBeforeOpenExr) {
   TempDir dir;
   write_image(gradient(), dir.file("g.exr"));

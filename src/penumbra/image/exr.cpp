@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstring>
 #include <exception>
+#include <utility>
 
 #include "penumbra/core/input_file.h"
 
@@ -58,11 +59,30 @@ std::int32_t load_int32(std::string_view bytes, std::size_t pos) {
   return static_cast<std::int32_t>(v);
 }
 
+// Bytes of the attribute types whose OpenEXR reader reads a fixed size whatever size the file
+// declares (ImfStandardAttributes, OpenEXR 3.1); 0 for the others.
+std::size_t fixed_size(std::string_view type) {
+  static constexpr std::pair<std::string_view, std::size_t> kSizes[] = {
+      {"box2i", 16},      {"box2f", 16},   {"chromaticities", 32},
+      {"compression", 1}, {"double", 8},   {"envmap", 1},
+      {"float", 4},       {"int", 4},      {"keycode", 28},
+      {"lineOrder", 1},   {"m33f", 36},    {"m33d", 72},
+      {"m44f", 64},       {"m44d", 128},   {"rational", 8},
+      {"tiledesc", 9},    {"timecode", 8}, {"v2i", 8},
+      {"v2f", 8},         {"v2d", 16},     {"v3i", 12},
+      {"v3f", 12},        {"v3d", 24},     {"deepImageState", 1}};
+  for (const auto& [name, size] : kSizes) {
+    if (name == type) return size;
+  }
+  return 0;
+}
+
 // Walks the headers of an EXR (magic, version, then per part: attributes "name\0type\0size
-// value", ended by a NUL) before OpenEXR sees them. OpenEXR allocates what an attribute's size
-// and the data window say before it reads the data, so a 468-byte file could ask for 1.6 GB (fuzz
-// finding, issue #18); here an attribute larger than the bytes that follow, or a data window of
-// more than max_pixels, is an InputError naming the byte offset.
+// value", ended by a NUL) as OpenEXR reads them, before it does. OpenEXR allocates what an
+// attribute's size (or a preview's dimensions) say before it reads the data, so a 468-byte file
+// could ask for 1.6 GB (fuzz findings, issue #18). An attribute larger than the bytes that follow,
+// one whose content does not fill its declared size, or a data window of more than max_pixels is
+// an InputError naming the byte offset.
 void check_exr_headers(std::string_view bytes, const std::string& path, std::size_t max_pixels) {
   const auto fail = [&](std::size_t at, const std::string& problem) {
     throw InputError(path, "byte " + std::to_string(at), problem);
@@ -79,6 +99,16 @@ void check_exr_headers(std::string_view bytes, const std::string& path, std::siz
     pos = end + 1;
     return s;
   };
+  // The bytes a channel list starting at pos takes (names and 16 bytes each, then a NUL).
+  const auto channel_list_size = [&](std::size_t start) {
+    std::size_t pos = start;
+    for (;;) {
+      if (pos >= bytes.size()) fail(pos, "file ends in the channel list");
+      if (read_string(pos, "channel name").empty()) return pos - start;
+      if (bytes.size() - pos < 16) fail(pos, "file ends in the channel list");
+      pos += 16;
+    }
+  };
   std::size_t pos = 8;
   for (int part = 0;; ++part) {
     if (pos >= bytes.size()) fail(pos, "file ends in the header");
@@ -94,7 +124,22 @@ void check_exr_headers(std::string_view bytes, const std::string& path, std::siz
                           ") declares " + std::to_string(size) + " bytes, but only " +
                           std::to_string(bytes.size() - pos) + " follow");
       }
-      if (name == "dataWindow" && type == "box2i" && size == 16) {
+      // The size OpenEXR will actually read must be the declared one.
+      const std::size_t fixed = fixed_size(type);
+      std::size_t content = fixed;
+      if (type == "chlist") content = channel_list_size(pos);
+      if (type == "preview") {
+        const std::uint64_t w = size >= 8 ? static_cast<std::uint32_t>(load_int32(bytes, pos)) : 0;
+        const std::uint64_t h =
+            size >= 8 ? static_cast<std::uint32_t>(load_int32(bytes, pos + 4)) : 0;
+        content = w * h <= bytes.size() ? static_cast<std::size_t>(8 + 4 * w * h) : SIZE_MAX;
+      }
+      if (content != 0 && content != static_cast<std::size_t>(size)) {
+        fail(pos - 4, "attribute '" + std::string(name) + "' (" + std::string(type) + ") holds " +
+                          (content == SIZE_MAX ? std::string("more") : std::to_string(content)) +
+                          " bytes but declares " + std::to_string(size));
+      }
+      if (name == "dataWindow" && type == "box2i") {
         const std::int64_t width =
             std::int64_t{load_int32(bytes, pos + 8)} - load_int32(bytes, pos) + 1;
         const std::int64_t height =

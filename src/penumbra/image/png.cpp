@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "penumbra/core/input_file.h"
+#include "penumbra/core/text_escape.h"
 #include "penumbra/image/tone_map.h"
 
 namespace penumbra {
@@ -59,6 +60,29 @@ void read_from_memory(png_structp png, png_bytep out, png_size_t count) {
   if (count > source->size - source->pos) png_error(png, "file ends in the middle of a chunk");
   std::memcpy(out, source->data + source->pos, count);
   source->pos += count;
+}
+
+// Walks the chunks (length, type, data, CRC) before libpng sees them: libpng allocates a chunk's
+// declared length before reading it, so a 74-byte file could ask for 1.2 GB (fuzz finding, issue
+// #18). A chunk longer than the bytes that follow is an InputError naming its byte offset.
+void check_png_chunks(std::string_view file, const std::string& path) {
+  constexpr std::string_view kSignature("\x89PNG\r\n\x1a\n", 8);
+  if (!file.starts_with(kSignature)) {
+    throw InputError(path, "byte 0", "not a PNG file (bad signature)");
+  }
+  for (std::size_t pos = kSignature.size(); pos + 8 <= file.size();) {
+    std::uint32_t length = 0;
+    for (int i = 0; i < 4; ++i) length = length << 8 | static_cast<std::uint8_t>(file[pos + i]);
+    const std::string type = escape_for_message(file.substr(pos + 4, 4));
+    if (length > file.size() - pos - 8 || file.size() - pos - 8 - length < 4) {
+      throw InputError(path, "byte " + std::to_string(pos),
+                       "chunk '" + type + "' declares " + std::to_string(length) +
+                           " bytes, but only " + std::to_string(file.size() - pos - 8) +
+                           " follow (with its CRC)");
+    }
+    if (type == "IEND") return;
+    pos += 12 + length;
+  }
 }
 
 // Owns libpng's read or write structure and its info structure.
@@ -169,6 +193,7 @@ RgbImage read_png(const std::string& path) {
 RgbImage decode_png(std::string_view file, const std::string& path, std::size_t max_pixels) {
   PngSource source{reinterpret_cast<const png_byte*>(file.data()), file.size(), 0};
   if (file.empty()) throw InputError(path, "", "empty file (0 bytes), not a PNG");
+  check_png_chunks(file, path);
   PngMessage message;
   PngHandle handle(false, &message);
   if (!handle.info) throw Error(path + ": cannot read PNG: out of memory");
