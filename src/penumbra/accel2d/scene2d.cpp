@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 
 #include <fmt/format.h>
 
@@ -51,13 +52,18 @@ std::vector<std::string_view> words(std::string_view line) {
   return out;
 }
 
-/// The finite number `w`, or an InputError naming the line.
+/// The finite number `w` of magnitude at most kMaxCoordinate, or an InputError naming the line.
 double number(std::string_view w, const std::string& name, int line) {
   double v = 0;
   const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
   if (ec != std::errc() || end != w.data() + w.size() || !std::isfinite(v))
     throw InputError(name, std::to_string(line),
                      fmt::format("'{}' is not a finite number", escape_for_message(w)));
+  if (std::abs(v) > kMaxCoordinate)
+    throw InputError(name, std::to_string(line),
+                     fmt::format("'{}' is beyond the largest coordinate, ±{:g} (products of "
+                                 "coordinates must stay finite)",
+                                 escape_for_message(w), kMaxCoordinate));
   return v;
 }
 
@@ -147,11 +153,16 @@ void check_disjoint(const Scene2D& scene, bool segments_only) {
   // Bucket the shapes' boxes in a grid of about n cells; test the pairs sharing a bucket.
   const double eps = scene.eps();
   const Box2d box = scene.bounds();
-  const int res = std::clamp(int(std::sqrt(double(n))), 1, 1024);
   const Vec2d ext = box.extent();
+  // An extent beyond the double range (coordinates near ±1.8e308) has no grid: one bucket.
+  const bool finite = std::isfinite(ext.x) && std::isfinite(ext.y);
+  const int res = finite ? std::clamp(int(std::sqrt(double(n))), 1, 1024) : 1;
   const Vec2d cell{std::max(ext.x, eps) / res, std::max(ext.y, eps) / res};
+  // Clamped before the conversion: (v - lo) / w may be NaN or beyond int (a UBSan finding).
   auto index = [&](double v, double lo, double w) {
-    return std::clamp(int((v - lo) / w), 0, res - 1);
+    const double t = (v - lo) / w;
+    if (!(t > 0)) return 0;
+    return t >= res - 1 ? res - 1 : int(t);
   };
   std::vector<std::vector<uint32_t>> buckets(size_t(res) * res);
   std::vector<uint32_t> seen(n, kNoShape);

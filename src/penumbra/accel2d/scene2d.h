@@ -14,6 +14,10 @@ namespace penumbra::lab2d {
 /// Relative tolerance of every side decision: eps = kTolerance · scale (docs/lab2d.md).
 constexpr double kTolerance = 1e-9;
 
+/// Largest coordinate magnitude the text format accepts: the side tests multiply coordinate
+/// differences, which must stay finite (2e150 squared is 4e300 < DBL_MAX).
+constexpr double kMaxCoordinate = 1e150;
+
 /// No shape: the id of a missed ray.
 constexpr uint32_t kNoShape = 0xffffffffu;
 
