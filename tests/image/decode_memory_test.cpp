@@ -124,6 +124,14 @@ TEST(DecodeMemory, FuzzExrChannelListOverrunIsRefused) {
   EXPECT_NE(m.find("f.exr:byte "), std::string::npos) << m;
 }
 
+// Fuzz finding (fuzz_exr): tiles of 2 x 134217730 pixels made OpenEXR's setFrameBuffer allocate
+// a row of tiles of gigabytes (a timeout). Tile sizes are now bounded by the pixel limit.
+TEST(DecodeMemory, FuzzExrHugeTileIsRefused) {
+  const std::string file = std::string(PENUMBRA_TEST_DATA) + "/fuzz/exr-huge-tile.exr";
+  const std::string m = message_of([&] { decode_exr(slurp(file), "f.exr"); });
+  EXPECT_NE(m.find("f.exr:byte 295: tiles of 2 x 134217730 pixels"), std::string::npos) << m;
+}
+
 TEST(DecodeMemory, ExrDataWindowAboveTheLimitIsRefusedBeforeOpenExr) {
   TempDir dir;
   write_image(gradient(), dir.file("g.exr"));

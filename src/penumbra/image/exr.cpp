@@ -113,6 +113,8 @@ void check_exr_headers(std::string_view bytes, const std::string& path, std::siz
   for (int part = 0;; ++part) {
     if (pos >= bytes.size()) fail(pos, "file ends in the header");
     if (part > 0 && bytes[pos] == '\0') return;  // the empty header after the last part
+    std::uint64_t window_width = 0, tile_x = 0, tile_y = 0;
+    std::size_t tiles_at = 0;
     while (bytes[pos] != '\0') {
       const std::string_view name = read_string(pos, "attribute name");
       const std::string_view type = read_string(pos, "attribute type");
@@ -150,9 +152,22 @@ void check_exr_headers(std::string_view bytes, const std::string& path, std::siz
                         " pixels is empty or larger than the limit of " +
                         std::to_string(max_pixels));
         }
+        window_width = static_cast<std::uint64_t>(width);
+      }
+      if (name == "tiles" && type == "tiledesc") {
+        tile_x = static_cast<std::uint32_t>(load_int32(bytes, pos));
+        tile_y = static_cast<std::uint32_t>(load_int32(bytes, pos + 4));
+        tiles_at = pos;
       }
       pos += static_cast<std::size_t>(size);
       if (pos >= bytes.size()) fail(pos, "file ends in the header");
+    }
+    // OpenEXR buffers a tile, and a row of tiles as wide as the data window, before reading.
+    if (tiles_at != 0 && (tile_x == 0 || tile_y == 0 || tile_x > max_pixels / tile_y ||
+                          window_width > max_pixels / tile_y)) {
+      fail(tiles_at, "tiles of " + std::to_string(tile_x) + " x " + std::to_string(tile_y) +
+                         " pixels are empty or too large for the limit of " +
+                         std::to_string(max_pixels) + " pixels");
     }
     ++pos;  // the NUL that ends this header
     if (!multipart) return;
