@@ -17,6 +17,8 @@
 namespace penumbra {
 namespace {
 
+using test::TempDir;
+
 RgbImage gradient() {
   RgbImage img(5, 3);
   for (int y = 0; y < 3; ++y)
