@@ -15,22 +15,16 @@ namespace {
 // overlapping). Coordinates are now bounded at load, and the grid clamps before converting.
 TEST(Scene2dFuzz, CoordinatesBeyondTheBoundAreRefusedAtLoad) {
   try {
-    parse_scene2d("0 0 1 1
--1.7e308 0 1.7e308 0
-", "f.txt");
+    parse_scene2d("0 0 1 1\n-1.7e308 0 1.7e308 0\n", "f.txt");
     ADD_FAILURE() << "no error";
   } catch (const InputError& e) {
     EXPECT_STREQ(e.what(),
                  "f.txt:2: '-1.7e308' is beyond the largest coordinate, ±1e+150 (products of "
                  "coordinates must stay finite)");
   }
-  const Scene2D s = parse_scene2d("-1e150 0 1e150 0
--1e140 1e149 1e140 1e148
-", "f.txt");
+  const Scene2D s = parse_scene2d("-1e150 0 1e150 0\n-1e140 1e149 1e140 1e148\n", "f.txt");
   EXPECT_NO_THROW(check_disjoint(s, false));
-  const Scene2D crossing = parse_scene2d("-1e150 0 1e150 0
-0 -1e150 0 1e150
-", "f.txt");
+  const Scene2D crossing = parse_scene2d("-1e150 0 1e150 0\n0 -1e150 0 1e150\n", "f.txt");
   EXPECT_THROW(check_disjoint(crossing, false), Error);
 }
 

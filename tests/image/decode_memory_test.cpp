@@ -69,7 +69,8 @@ TEST(DecodeMemory, EmptyAndTruncatedInputsAreInputErrors) {
   write_image(gradient(), dir.file("g.png"));
   const std::string png = slurp(dir.file("g.png"));
   const std::string m = message_of([&] { decode_png(png.substr(0, png.size() / 2), "t.png"); });
-  EXPECT_NE(m.find("t.png: invalid PNG: "), std::string::npos) << m;
+  EXPECT_EQ(m.rfind("t.png:byte ", 0), 0u) << m;  // the chunk the file ends in
+  EXPECT_NE(m.find("bytes, but only"), std::string::npos) << m;
 }
 
 TEST(DecodeMemory, PixelLimitIsCheckedBeforeAllocating) {
@@ -96,7 +97,9 @@ TEST(DecodeMemory, SpecialFilesAreRefusedBeforeReading) {
 TEST(DecodeMemory, FuzzPngHugeTextChunkFailsFast) {
   const std::string file = std::string(PENUMBRA_TEST_DATA) + "/fuzz/png-itxt-640mb-chunk.png";
   const std::string m = message_of([&] { decode_png(slurp(file), "f.png"); });
-  EXPECT_EQ(m.rfind("f.png: invalid PNG: ", 0), 0u) << m;
+  EXPECT_EQ(m.rfind("f.png:byte 33: chunk 'iTXt' declares 640034342 bytes, but only 89 follow", 0),
+            0u)
+      << m;
 }
 
 // Fuzz finding (fuzz_exr): a 468-byte file with an attribute that declares 1.6 GB made OpenEXR
