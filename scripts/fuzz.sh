@@ -7,7 +7,8 @@
 #   FUZZ_BUILD_DIR  build folder (default build-fuzzers, beside the main build)
 #   FUZZ_WORK_DIR   where new corpus entries and findings go (default $FUZZ_BUILD_DIR/work)
 #   FUZZ_JOBS       targets run at the same time (default 1)
-#   FUZZ_MERGE=1    afterwards, minimise each target's corpus into fuzz/corpus/<target>
+#   FUZZ_MERGE=1    afterwards, minimise each target's corpus into fuzz/corpus/<target>, keeping
+#                   the smallest inputs within FUZZ_CORPUS_KB (default 64) KiB
 # Findings are written to $FUZZ_WORK_DIR/<target>/findings/ and listed at the end.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -71,8 +72,15 @@ if [[ ${FUZZ_MERGE:-0} == 1 ]]; then
     "$build/fuzz_$t" -merge=1 -max_len="${max_len[$t]}" -rss_limit_mb=2048 \
       -malloc_limit_mb=1024 -timeout=10 "$work/$t/merged" "fuzz/corpus/$t" "$work/$t/corpus" \
       >"$work/$t/merge.log" 2>&1 || failed=1
-    rm -rf "fuzz/corpus/$t" && mv "$work/$t/merged" "fuzz/corpus/$t"
-    echo "$t: merged corpus $(ls "fuzz/corpus/$t" | wc -l) files, $(du -sh "fuzz/corpus/$t" | cut -f1)"
+    # Keep the smallest inputs of the merged set within the budget.
+    rm -rf "fuzz/corpus/$t" && mkdir -p "fuzz/corpus/$t"
+    budget=$((${FUZZ_CORPUS_KB:-64} * 1024)) total=0
+    while read -r f; do
+      size=$(stat -c %s "$f")
+      ((total + size > budget)) && break
+      cp "$f" "fuzz/corpus/$t/" && total=$((total + size))
+    done < <(ls -1Sr "$work/$t/merged"/*)
+    echo "$t: corpus of $(ls "fuzz/corpus/$t" | wc -l) files, $total bytes"
   done
 fi
 
