@@ -73,6 +73,13 @@ TEST(DecodeMemory, EmptyAndTruncatedInputsAreInputErrors) {
   EXPECT_NE(m.find("bytes, but only"), std::string::npos) << m;
 }
 
+TEST(DecodeMemory, PfmTrailingDataIsAnError) {
+  const std::string pfm = std::string("Pf\n1 1\n-1.0\n") + std::string(4, '\0') + "junk";
+  EXPECT_EQ(message_of([&] { decode_pfm(pfm, "t.pfm"); }),
+            "t.pfm:byte 16: 4 bytes of trailing data after the pixel data");
+  EXPECT_EQ(decode_pfm(pfm.substr(0, 16), "t.pfm").width(), 1);
+}
+
 TEST(DecodeMemory, PixelLimitIsCheckedBeforeAllocating) {
   const std::string pfm = "PF\n4096 4096\n-1.0\n";  // claims 4096 x 4096, holds nothing
   EXPECT_NE(message_of([&] { decode_pfm(pfm, "big.pfm", 1 << 20); }).find("more than the limit"),

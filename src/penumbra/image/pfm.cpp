@@ -181,6 +181,12 @@ RgbImage decode_pfm(std::string_view bytes, const std::string& path, std::size_t
                          std::to_string(header.data_offset) + ")");
   }
 
+  if (available > data_bytes) {
+    throw InputError(
+        path, byte_place(header.data_offset + data_bytes),
+        std::to_string(available - data_bytes) + " bytes of trailing data after the pixel data");
+  }
+
   RgbImage image(header.width, header.height);
   const bool swap = header.little_endian != (std::endian::native == std::endian::little);
   const char* data = bytes.data() + header.data_offset;
