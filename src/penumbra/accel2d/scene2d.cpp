@@ -2,12 +2,13 @@
 
 #include <algorithm>
 #include <charconv>
-#include <fstream>
-#include <sstream>
+#include <cmath>
 
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/input_file.h"
+#include "penumbra/core/text_escape.h"
 #include "penumbra/geometry/convex_polygon2d.h"
 
 namespace penumbra::lab2d {
@@ -51,12 +52,18 @@ std::vector<std::string_view> words(std::string_view line) {
   return out;
 }
 
-/// The finite number `w`, or an InputError naming the line.
+/// The finite number `w` of magnitude at most kMaxCoordinate, or an InputError naming the line.
 double number(std::string_view w, const std::string& name, int line) {
   double v = 0;
   const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), v);
   if (ec != std::errc() || end != w.data() + w.size() || !std::isfinite(v))
-    throw InputError(name, std::to_string(line), fmt::format("'{}' is not a finite number", w));
+    throw InputError(name, std::to_string(line),
+                     fmt::format("'{}' is not a finite number", escape_for_message(w)));
+  if (std::abs(v) > kMaxCoordinate)
+    throw InputError(name, std::to_string(line),
+                     fmt::format("'{}' is beyond the largest coordinate, ±{:g} (products of "
+                                 "coordinates must stay finite)",
+                                 escape_for_message(w), kMaxCoordinate));
   return v;
 }
 
@@ -92,6 +99,7 @@ void check_shapes(Scene2D& scene) {
 Scene2D parse_scene2d(std::string_view text, const std::string& name) {
   Scene2D scene;
   scene.source = name;
+  if (const auto why = describe_non_text(text)) throw InputError(name, "", *why);
   int line_no = 0;
   while (!text.empty()) {
     const size_t nl = text.find('\n');
@@ -130,12 +138,7 @@ Scene2D parse_scene2d(std::string_view text, const std::string& name) {
 }
 
 Scene2D load_scene2d(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open the file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Error(path + ": read error");
-  return parse_scene2d(ss.str(), path);
+  return parse_scene2d(read_input_file(path), path);
 }
 
 void check_disjoint(const Scene2D& scene, bool segments_only) {
@@ -150,11 +153,16 @@ void check_disjoint(const Scene2D& scene, bool segments_only) {
   // Bucket the shapes' boxes in a grid of about n cells; test the pairs sharing a bucket.
   const double eps = scene.eps();
   const Box2d box = scene.bounds();
-  const int res = std::clamp(int(std::sqrt(double(n))), 1, 1024);
   const Vec2d ext = box.extent();
+  // An extent beyond the double range (coordinates near ±1.8e308) has no grid: one bucket.
+  const bool finite = std::isfinite(ext.x) && std::isfinite(ext.y);
+  const int res = finite ? std::clamp(int(std::sqrt(double(n))), 1, 1024) : 1;
   const Vec2d cell{std::max(ext.x, eps) / res, std::max(ext.y, eps) / res};
+  // Clamped before the conversion: (v - lo) / w may be NaN or beyond int (a UBSan finding).
   auto index = [&](double v, double lo, double w) {
-    return std::clamp(int((v - lo) / w), 0, res - 1);
+    const double t = (v - lo) / w;
+    if (!(t > 0)) return 0;
+    return t >= res - 1 ? res - 1 : int(t);
   };
   std::vector<std::vector<uint32_t>> buckets(size_t(res) * res);
   std::vector<uint32_t> seen(n, kNoShape);

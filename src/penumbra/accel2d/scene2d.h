@@ -14,6 +14,10 @@ namespace penumbra::lab2d {
 /// Relative tolerance of every side decision: eps = kTolerance · scale (docs/lab2d.md).
 constexpr double kTolerance = 1e-9;
 
+/// Largest coordinate magnitude the text format accepts: the side tests multiply coordinate
+/// differences, which must stay finite (2e150 squared is 4e300 < DBL_MAX).
+constexpr double kMaxCoordinate = 1e150;
+
 /// No shape: the id of a missed ray.
 constexpr uint32_t kNoShape = 0xffffffffu;
 
@@ -51,7 +55,7 @@ struct Scene2D {
 /// Parses the text format; `name` names the input in errors ("NAME:LINE: problem").
 Scene2D parse_scene2d(std::string_view text, const std::string& name);
 
-/// Reads and parses the file at path; throws Error when it cannot be read.
+/// Reads (read_input_file) and parses the file at path; throws InputError when it cannot be read.
 Scene2D load_scene2d(const std::string& path);
 
 /// Throws InputError naming both lines when two shapes meet: segments that cross, touch or overlap

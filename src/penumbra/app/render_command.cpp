@@ -14,9 +14,13 @@
 #include "penumbra/app/stats_format.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
+#include "penumbra/core/params.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/image/image_io.h"
+#include "penumbra/render/filter/filter.h"
+#include "penumbra/render/integrator/integrator_registry.h"
 #include "penumbra/render/render_job.h"
+#include "penumbra/render/sampler/sampler_registry.h"
 #include "penumbra/scene/scene_loader.h"
 
 namespace penumbra::app {
@@ -70,6 +74,32 @@ const char* stop_text(StopReason r) {
     case StopReason::kComplete:
     default:
       return "complete";
+  }
+}
+
+// Checks the names given by --accel, --integrator, --sampler and --filter, so that an error in
+// them names the option (RenderJob names the scene file's "/render/..." for the rest).
+void check_overrides(const RenderArgs& args) {
+  const auto check = [](const char* option, const auto& make) {
+    try {
+      make();
+    } catch (const Error& e) {
+      throw Error(std::string(option) + ": " + e.what());
+    }
+  };
+  if (args.accel) check("--accel", [&] { make_accelerator(*args.accel); });
+  if (args.sampler) check("--sampler", [&] { make_sampler(*args.sampler, 1, 0); });
+  if (args.filter) check("--filter", [&] { make_filter(*args.filter); });
+  if (args.integrator) {
+    check("--integrator", [&] {
+      const std::string name = ParamList::parse(*args.integrator).name();
+      std::string valid;
+      for (const IntegratorInfo& i : integrator_list()) {
+        if (i.name == name) return;
+        valid += (valid.empty() ? "" : ", ") + i.name;
+      }
+      throw Error("unknown integrator '" + name + "' (valid: " + valid + ")");
+    });
   }
 }
 
@@ -135,6 +165,7 @@ int run_render(const RenderArgs& args) {
   RenderSettings& rs = desc.render;
   if (args.spp) rs.spp = *args.spp;
   if (args.seed) rs.seed = *args.seed;
+  check_overrides(args);
   if (args.accel) rs.accel = *args.accel;
   if (args.integrator) rs.integrator = *args.integrator;
   if (args.sampler) rs.sampler = *args.sampler;

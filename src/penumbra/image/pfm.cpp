@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "penumbra/core/input_file.h"
+
 namespace penumbra {
 namespace {
 
@@ -151,17 +153,22 @@ void write_pfm(const RgbImage& image, const std::string& path) {
 }
 
 RgbImage read_pfm(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open for reading: " + std::strerror(errno));
-  in.seekg(0, std::ios::end);
-  const auto file_size = static_cast<std::size_t>(in.tellg());
-  in.seekg(0);
+  return decode_pfm(read_input_file(path), path);
+}
 
-  // Header: at most kMaxHeaderBytes are read and parsed.
-  std::string head(std::min(file_size, kMaxHeaderBytes), '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  if (!in) throw Error(path + ": reading failed");
+RgbImage decode_pfm(std::string_view bytes, const std::string& path, std::size_t max_pixels) {
+  const std::size_t file_size = bytes.size();
+
+  // Header: at most kMaxHeaderBytes are parsed.
+  const std::string head(bytes.substr(0, std::min(file_size, kMaxHeaderBytes)));
   const PfmHeader header = parse_header(path, head, head.size() == file_size);
+  if (std::uint64_t{static_cast<std::uint32_t>(header.width)} *
+          static_cast<std::uint32_t>(header.height) >
+      max_pixels) {
+    throw InputError(path, byte_place(3),
+                     std::to_string(header.width) + " x " + std::to_string(header.height) +
+                         " pixels is more than the limit of " + std::to_string(max_pixels));
+  }
 
   // Pixel data: the whole block must be present before the image is allocated.
   const std::size_t row_floats = static_cast<std::size_t>(header.width) * header.channels;
@@ -174,17 +181,21 @@ RgbImage read_pfm(const std::string& path) {
                          std::to_string(header.data_offset) + ")");
   }
 
+  if (available > data_bytes) {
+    throw InputError(
+        path, byte_place(header.data_offset + data_bytes),
+        std::to_string(available - data_bytes) + " bytes of trailing data after the pixel data");
+  }
+
   RgbImage image(header.width, header.height);
   const bool swap = header.little_endian != (std::endian::native == std::endian::little);
-  std::vector<std::uint32_t> row(row_floats);
-  in.seekg(static_cast<std::streamoff>(header.data_offset));
-  for (int y = header.height - 1; y >= 0; --y) {
-    in.read(reinterpret_cast<char*>(row.data()),
-            static_cast<std::streamsize>(row.size() * sizeof(std::uint32_t)));
-    if (!in) throw Error(path + ": reading failed");
+  const char* data = bytes.data() + header.data_offset;
+  for (int y = header.height - 1; y >= 0; --y, data += row_floats * sizeof(float)) {
     Rgb* pixels = image.row(y);
-    for (std::size_t i = 0; i < row.size(); ++i) {
-      const float value = std::bit_cast<float>(swap ? byte_swap(row[i]) : row[i]);
+    for (std::size_t i = 0; i < row_floats; ++i) {
+      std::uint32_t bits = 0;
+      std::memcpy(&bits, data + i * sizeof(float), sizeof(bits));
+      const float value = std::bit_cast<float>(swap ? byte_swap(bits) : bits);
       if (header.channels == 1) {
         pixels[i] = Rgb(value);
       } else {

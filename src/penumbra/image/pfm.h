@@ -1,6 +1,8 @@
 #pragma once
 /// Portable Float Map (PFM) files: a short text header, then raw 32-bit floats, bottom row first.
+#include <cstddef>
 #include <string>
+#include <string_view>
 
 #include "penumbra/image/image.h"
 
@@ -12,7 +14,12 @@ void write_pfm(const RgbImage& image, const std::string& path);
 
 /// Reads a colour ("PF") or greyscale ("Pf", expanded to RGB) PFM of either endianness; the
 /// magnitude of the scale is ignored, so values come back bit-exact. Throws InputError naming the
-/// file and byte offset for a malformed file, Error if it cannot be opened.
+/// file and byte offset for a malformed file or one that cannot be read.
 RgbImage read_pfm(const std::string& path);
+
+/// Decodes PFM bytes held in memory (read_pfm's parser); `name` names them in messages. Images of
+/// more than `max_pixels` pixels are refused before anything is allocated.
+RgbImage decode_pfm(std::string_view bytes, const std::string& name,
+                    std::size_t max_pixels = kMaxImagePixels);
 
 }  // namespace penumbra

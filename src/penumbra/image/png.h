@@ -1,6 +1,8 @@
 #pragma once
 /// 8-bit sRGB PNG files through libpng.
+#include <cstddef>
 #include <string>
+#include <string_view>
 
 #include "penumbra/image/image.h"
 
@@ -13,5 +15,10 @@ void write_png(const RgbImage& image, const std::string& path, float exposure = 
 /// Reads a PNG (any bit depth and colour type; alpha dropped, 16-bit cut to 8) and converts its
 /// 8-bit sRGB codes to linear values. Throws InputError naming the file if libpng rejects it.
 RgbImage read_png(const std::string& path);
+
+/// Decodes PNG bytes held in memory (read_png's decoder); `name` names them in messages. Images of
+/// more than `max_pixels` pixels are refused before the pixels are allocated.
+RgbImage decode_png(std::string_view bytes, const std::string& name,
+                    std::size_t max_pixels = kMaxImagePixels);
 
 }  // namespace penumbra

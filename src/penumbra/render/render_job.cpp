@@ -1,20 +1,41 @@
 #include "penumbra/render/render_job.h"
 
+#include "penumbra/accel/registry.h"
 #include "penumbra/render/camera/camera_registry.h"
 #include "penumbra/render/integrator/integrator_registry.h"
 #include "penumbra/render/sampler/sampler_registry.h"
 
 namespace penumbra {
+namespace {
+
+// Runs make(); an Error it throws (an unknown name, a bad parameter) is re-thrown as an InputError
+// naming the scene file and the setting's JSON path, "/render/KEY". Callers that override a
+// setting (the CLI's --accel, ...) check their value first, so the error is the file's.
+template <class Make>
+auto setting(const SceneDesc& scene, const char* key, Make&& make) {
+  try {
+    return make();
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& e) {
+    if (scene.file.empty()) throw;
+    throw InputError(scene.file, std::string("/render/") + key, e.what());
+  }
+}
+
+}  // namespace
 
 RenderJob::RenderJob(SceneDesc desc) : scene(std::move(desc)) {
   const RenderSettings& rs = scene.render;
+  setting(scene, "accel", [&] { return make_accelerator(rs.accel); });  // the name, before building
   world = std::make_unique<World>(scene, rs.accel);
   camera = make_camera(scene.camera, rs.width, rs.height);
-  sampler = make_sampler(rs.sampler, rs.spp, rs.seed);
-  filter = make_filter(rs.filter);
+  sampler = setting(scene, "sampler", [&] { return make_sampler(rs.sampler, rs.spp, rs.seed); });
+  filter = setting(scene, "filter", [&] { return make_filter(rs.filter); });
   filter_sampler = std::make_unique<FilterSampler>(*filter);
   film = std::make_unique<Film>(rs.width, rs.height);
-  integrator = make_integrator(rs.integrator, *world, rs);
+  integrator =
+      setting(scene, "integrator", [&] { return make_integrator(rs.integrator, *world, rs); });
 }
 
 RenderStats RenderJob::run() {

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/text_escape.h"
 
 namespace penumbra {
 
@@ -67,6 +68,11 @@ std::string json_pointer_escape(std::string_view key) {
 }
 
 json parse_json(const std::string& text, const std::string& file) {
+  // UTF-16 and UTF-32 files get a message of their own rather than a syntax error at 1:1.
+  if (const auto why = describe_non_text(std::string_view(text).substr(0, 4));
+      why && why->starts_with("UTF")) {
+    throw InputError(file, "", *why);
+  }
   // The containers open at the current parse position, to name the path of a duplicate key.
   struct Frame {
     bool is_object;

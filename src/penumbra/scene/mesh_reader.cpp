@@ -1,14 +1,10 @@
 #include "penumbra/scene/mesh_reader.h"
 
 #include <cctype>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <memory>
-#include <system_error>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/input_file.h"
 #include "penumbra/scene/obj_reader.h"
 #include "penumbra/scene/ply_reader.h"
 
@@ -23,23 +19,7 @@ TriangleMesh read_mesh(const std::string& path) {
 }
 
 std::string read_file_contents(const std::string& path) {
-  const std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                             &std::fclose);
-  if (!file) throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
-
-  // Read the expected size in one call, then whatever is left (pipes, files that grew).
-  std::string data;
-  std::error_code ec;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec) data.resize(static_cast<size_t>(size));
-  data.resize(std::fread(data.data(), 1, data.size(), file.get()));
-  char chunk[1 << 16];
-  size_t got = 0;
-  while ((got = std::fread(chunk, 1, sizeof(chunk), file.get())) > 0) data.append(chunk, got);
-  if (std::ferror(file.get())) {
-    throw InputError(path, "", std::string("cannot read file: ") + std::strerror(errno));
-  }
-  return data;
+  return read_input_file(path);
 }
 
 }  // namespace penumbra

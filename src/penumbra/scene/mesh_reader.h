@@ -11,7 +11,8 @@ namespace penumbra {
 /// throws InputError for an unknown extension or a malformed file.
 TriangleMesh read_mesh(const std::string& path);
 
-/// Returns the whole content of the file at `path`; throws InputError if it cannot be read.
+/// Returns the whole content of the file at `path` (read_input_file: regular files only, read up
+/// to their size); throws InputError if it cannot be read.
 std::string read_file_contents(const std::string& path);
 
 }  // namespace penumbra

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/text_escape.h"
 #include "penumbra/scene/mesh_reader.h"
 
 namespace penumbra {
@@ -121,6 +122,9 @@ class ObjParser {
   ObjParser(std::string_view text, const std::string& name) : text_(text), name_(name) {}
 
   TriangleMesh parse() {
+    // Text only: name binary data and UTF-16 rather than quoting their bytes as statements.
+    if (text_.starts_with("\xEF\xBB\xBF")) text_.remove_prefix(3);  // a UTF-8 byte order mark
+    if (const auto why = describe_non_text(text_)) throw InputError(name_, "", *why);
     const char* p = text_.data();
     const char* end = p + text_.size();
     while (p < end) {
@@ -153,7 +157,7 @@ class ObjParser {
                keyword == "mtllib" || keyword == "l" || keyword == "p" || keyword == "vp") {
       // Accepted and ignored: names, groups, smoothing, materials, lines, points.
     } else {
-      fail("unknown statement '" + std::string(keyword) + "'");
+      fail("unknown statement '" + quote(keyword) + "'");
     }
   }
 
@@ -163,8 +167,8 @@ class ObjParser {
     int count = 0;
     for (std::string_view token = tokens.next(); !token.empty(); token = tokens.next(), ++count) {
       float value = 0;
-      if (!parse_float(token, value)) fail("bad number '" + std::string(token) + "'");
-      if (!std::isfinite(value)) fail("non-finite number '" + std::string(token) + "'");
+      if (!parse_float(token, value)) fail("bad number '" + quote(token) + "'");
+      if (!std::isfinite(value)) fail("non-finite number '" + quote(token) + "'");
       if (count < 3) out[count] = value;
     }
     if (count < required) {
@@ -183,12 +187,12 @@ class ObjParser {
       size_t part_count = 0, start = 0;
       for (;;) {
         const size_t slash = token.find('/', start);
-        if (part_count == 3) fail("bad face vertex '" + std::string(token) + "'");
+        if (part_count == 3) fail("bad face vertex '" + quote(token) + "'");
         parts[part_count++] = token.substr(start, slash - start);
         if (slash == std::string_view::npos) break;
         start = slash + 1;
       }
-      if (parts[0].empty()) fail("bad face vertex '" + std::string(token) + "'");
+      if (parts[0].empty()) fail("bad face vertex '" + quote(token) + "'");
       face_.push_back({resolve(parts[0], positions_.size(), "vertex"),
                        parts[1].empty() ? kNone : resolve(parts[1], uvs_.size(), "uv"),
                        parts[2].empty() ? kNone : resolve(parts[2], normals_.size(), "normal")});
@@ -210,13 +214,13 @@ class ObjParser {
     if (*begin == '+') ++begin;
     int64_t index = 0;
     const auto [ptr, ec] = std::from_chars(begin, end, index);
-    if (ec != std::errc() || ptr != end) fail("bad index '" + std::string(text) + "'");
+    if (ec != std::errc() || ptr != end) fail("bad index '" + quote(text) + "'");
     if (index == 0) fail(std::string(what) + " index 0 is invalid (OBJ indices start at 1)");
     const int64_t n = static_cast<int64_t>(count);
     const int64_t resolved = index > 0 ? index - 1 : n + index;
     if (resolved < 0 || resolved >= n) {
-      fail(std::string(what) + " index " + std::string(text) + " out of range (" +
-           std::to_string(count) + " defined so far)");
+      fail(std::string(what) + " index " + quote(text) + " out of range (" + std::to_string(count) +
+           " defined so far)");
     }
     if (resolved >= kNone) fail("too many vertices for 32-bit indices");
     return static_cast<uint32_t>(resolved);
@@ -253,6 +257,9 @@ class ObjParser {
     }
     return mesh;
   }
+
+  /// A token of the file for a message: escaped, at most 40 bytes.
+  static std::string quote(std::string_view token) { return escape_for_message(token, 40); }
 
   [[noreturn]] void fail(const std::string& problem) const {
     throw InputError(name_, "line " + std::to_string(line_), problem);

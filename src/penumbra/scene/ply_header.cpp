@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/text_escape.h"
 
 namespace penumbra::ply {
 
@@ -40,6 +41,12 @@ static std::optional<PlyType> parse_type(std::string_view s) {
   return std::nullopt;
 }
 
+/// A word of the header for a message or a name: escaped, at most 40 bytes (so a name that is
+/// cut can never equal "vertex" or "x").
+static std::string quote(std::string_view word) {
+  return escape_for_message(word, 40);
+}
+
 [[noreturn]] static void header_error(const std::string& name, size_t line,
                                       const std::string& problem) {
   throw InputError(name, "line " + std::to_string(line), problem);
@@ -66,7 +73,7 @@ static void parse_header_line(const std::vector<std::string_view>& w, size_t lin
                               const std::string& name) {
   const auto type_of = [&](std::string_view s) {
     const std::optional<PlyType> t = parse_type(s);
-    if (!t) header_error(name, line, "unknown type '" + std::string(s) + "'");
+    if (!t) header_error(name, line, "unknown type '" + quote(s) + "'");
     return *t;
   };
   if (w[0] == "format") {
@@ -81,15 +88,15 @@ static void parse_header_line(const std::vector<std::string_view>& w, size_t lin
     } else if (w[1] == "binary_big_endian") {
       h.format = PlyFormat::kBinaryBigEndian;
     } else {
-      header_error(name, line, "unknown format '" + std::string(w[1]) + "'");
+      header_error(name, line, "unknown format '" + quote(w[1]) + "'");
     }
   } else if (w[0] == "element") {
     if (w.size() != 3) header_error(name, line, "expected 'element <name> <count>'");
-    if (w[2].starts_with('-')) header_error(name, line, "negative count " + std::string(w[2]));
-    PlyElement e{std::string(w[1]), 0, line, {}};
+    if (w[2].starts_with('-')) header_error(name, line, "negative count " + quote(w[2]));
+    PlyElement e{quote(w[1]), 0, line, {}};
     const auto [ptr, ec] = std::from_chars(w[2].data(), w[2].data() + w[2].size(), e.count);
     if (ec != std::errc() || ptr != w[2].data() + w[2].size()) {
-      header_error(name, line, "bad element count '" + std::string(w[2]) + "'");
+      header_error(name, line, "bad element count '" + quote(w[2]) + "'");
     }
     h.elements.push_back(std::move(e));
   } else if (w[0] == "property") {
@@ -100,25 +107,26 @@ static void parse_header_line(const std::vector<std::string_view>& w, size_t lin
       p.is_list = true;
       p.count_type = type_of(w[2]);
       p.type = type_of(w[3]);
-      p.name = w[4];
+      p.name = quote(w[4]);
       if (!is_integer(p.count_type)) {
-        header_error(name, line, "list count type '" + std::string(w[2]) + "' is not an integer");
+        header_error(name, line, "list count type '" + quote(w[2]) + "' is not an integer");
       }
     } else if (w.size() == 3 && w[1] != "list") {
       p.type = type_of(w[1]);
-      p.name = w[2];
+      p.name = quote(w[2]);
     } else {
       header_error(name, line, "expected 'property <type> <name>' or 'property list ...'");
     }
     h.elements.back().properties.push_back(std::move(p));
   } else if (w[0] != "comment" && w[0] != "obj_info") {
-    header_error(name, line, "unknown header keyword '" + std::string(w[0]) + "'");
+    header_error(name, line, "unknown header keyword '" + quote(w[0]) + "'");
   }
 }
 
 /// Reads the header, from the magic line to end_header.
 PlyHeader parse_header(std::string_view data, const std::string& name) {
   PlyHeader h;
+  if (data.empty()) throw InputError(name, "", "empty file (0 bytes)");
   bool has_format = false;
   size_t pos = 0;
   for (size_t line = 1;; ++line) {
@@ -129,7 +137,11 @@ PlyHeader parse_header(std::string_view data, const std::string& name) {
     pos = eol + 1;
     if (text.ends_with('\r')) text.remove_suffix(1);
     if (line == 1) {
-      if (text != "ply") header_error(name, line, "bad magic: the file does not start with 'ply'");
+      if (text != "ply") {
+        const auto why = describe_non_text(data.substr(0, 4));
+        if (why && why->starts_with("UTF")) header_error(name, line, *why);
+        header_error(name, line, "bad magic: the file does not start with 'ply'");
+      }
       continue;
     }
     const std::vector<std::string_view> words = split(text);
@@ -210,20 +222,19 @@ void resolve_layout(PlyHeader& h, const std::string& name) {
 }
 
 /// Checks every element count against the bytes left after the header, before any allocation:
-/// a binary item needs at least the sum of its sizes (lists empty, face lists of 3 indices), an
-/// ascii value at least 2 bytes (a digit and a separator).
+/// a binary item needs at least the sum of its sizes (lists empty: a face of fewer than three
+/// vertices is reported as such when it is read), an ascii value at least 2 bytes (a digit and a
+/// separator).
 void check_sizes(const PlyHeader& h, size_t file_size, const std::string& name) {
   const bool ascii = h.format == PlyFormat::kAscii;
   uint64_t remaining = file_size - h.body_offset + (ascii ? 1 : 0);  // last value may lack '\n'
   for (const PlyElement& e : h.elements) {
     uint64_t min_bytes = 0;
     for (const PlyProperty& p : e.properties) {
-      const uint64_t list_items = p.slot == kIndices ? 3 : 0;
       if (ascii) {
-        min_bytes += 2 * (1 + list_items);
+        min_bytes += 2;
       } else {
-        min_bytes += p.is_list ? type_size(p.count_type) + list_items * type_size(p.type)
-                               : type_size(p.type);
+        min_bytes += type_size(p.is_list ? p.count_type : p.type);
       }
     }
     if (min_bytes == 0) continue;

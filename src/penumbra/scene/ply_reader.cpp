@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/text_escape.h"
 #include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/ply_header.h"
 
@@ -79,6 +80,15 @@ class BinaryCursor {
     const uint64_t n = static_cast<uint64_t>(count(p.count_type));
     if (n > static_cast<uint64_t>(end_ - p_) / type_size(p.type)) fail(mark(), "truncated list");
     p_ += n * type_size(p.type);
+  }
+  /// Bytes not yet read.
+  size_t left() const { return static_cast<size_t>(end_ - p_); }
+  /// Fails if bytes follow the last element.
+  void finish() {
+    element_ = nullptr;
+    if (p_ != end_) {
+      fail(mark(), std::to_string(left()) + " bytes of trailing data after the last element");
+    }
   }
 
  private:
@@ -175,6 +185,16 @@ class AsciiCursor {
   void skip_list(const PlyProperty& p) {
     for (int64_t i = count(p.count_type); i > 0; --i) next();
   }
+  /// Bytes not yet read.
+  size_t left() const { return static_cast<size_t>(end_ - p_); }
+  /// Fails if anything but whitespace follows the last element.
+  void finish() {
+    element_ = nullptr;
+    skip_space();
+    if (p_ != end_) {
+      fail(line_, "trailing data after the last element: '" + shorten(next()) + "'");
+    }
+  }
 
  private:
   void skip_space() {
@@ -195,9 +215,7 @@ class AsciiCursor {
     if (!fits(value, t)) fail(line_, shorten(token) + " is out of range for " + type_name(t));
     return value;
   }
-  static std::string shorten(std::string_view token) {
-    return token.size() <= 32 ? std::string(token) : std::string(token.substr(0, 32)) + "...";
-  }
+  static std::string shorten(std::string_view token) { return escape_for_message(token, 40); }
 
   const char* p_;
   const char* end_;
@@ -258,7 +276,8 @@ template <class Cursor>
 void read_faces(Cursor& c, const PlyHeader& h, TriangleMesh& mesh) {
   const PlyElement& e = h.elements[h.face];
   const uint64_t vertex_count = h.elements[h.vertex].count;
-  mesh.indices.reserve(3 * e.count);  // bounded by check_sizes: at least 3 indices per face
+  // Room for one triangle per face, bounded by the bytes left (a face has at least one index).
+  mesh.indices.reserve(3 * std::min<uint64_t>(e.count, c.left()));
   for (uint64_t i = 0; i < e.count; ++i) {
     c.set_item(e, i);
     for (const PlyProperty& p : e.properties) {
@@ -300,6 +319,7 @@ void read_body(Cursor& c, const PlyHeader& h, TriangleMesh& mesh) {
       }
     }
   }
+  c.finish();
 }
 
 }  // namespace

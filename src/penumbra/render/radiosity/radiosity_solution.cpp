@@ -6,10 +6,12 @@
 #include <cstring>
 #include <fstream>
 #include <numbers>
+#include <sstream>
 
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/input_file.h"
 #include "penumbra/image/image_io.h"
 #include "penumbra/image/tone_map.h"
 
@@ -90,8 +92,8 @@ void write_radiosity_solution(const std::string& path, const RadiosityMesh& mesh
 
 std::vector<Rgb> read_radiosity_solution(const std::string& path, RadiosityMesh& mesh,
                                          size_t max_elements) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw InputError(path, "", "cannot open the radiosity solution");
+  // Read whole through read_input_file: regular files only, up to their size.
+  std::istringstream f(read_input_file(path), std::ios::binary);
   // The header, line by line: it must be exactly what write_radiosity_solution writes for this
   // mesh (the comment aside).
   std::string line;
