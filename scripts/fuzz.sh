@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
-TARGETS=(scene_json obj ply scene2d pfm png exr)
+TARGETS=(scene_json obj ply pbrt scene2d pfm png exr)
 targets=("$@")
 [[ ${#targets[@]} -eq 0 ]] && targets=("${TARGETS[@]}")
 build=${FUZZ_BUILD_DIR:-build-fuzzers}

@@ -126,12 +126,17 @@ TEST(PbrtShapes, MeshErrors) {
             "exactly 3 vertices)");
   EXPECT_EQ(pbrt_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
                        "  \"integer indices\" [0 1 3]"),
-            "test.pbrt:3:3: vertex index 3 out of range (the mesh has 3 vertices)");
+            "test.pbrt:3:3: vertex index 3 out of range or not an integer (the mesh has 3 vertices)");
   EXPECT_EQ(pbrt_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
                        "  \"normal N\" [0 0 1]"),
             "test.pbrt:3:3: \"N\" has 1 normals for 3 positions");
   EXPECT_EQ(pbrt_error("WorldBegin\nShape \"trianglemesh\""),
             "test.pbrt:2:1: Shape \"trianglemesh\" needs \"point3 P\"");
+  // Fuzz finding: an index of 2.4e59 was converted to int64_t for the message (undefined).
+  EXPECT_EQ(pbrt_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
+                       "  \"integer indices\" [0 1 2.44444e59]"),
+            "test.pbrt:3:3: vertex index 2.44444e+59 out of range or not an integer (the mesh has "
+            "3 vertices)");
 }
 
 TEST(PbrtShapes, BilinearMeshIsTwoTrianglesPerPatch) {

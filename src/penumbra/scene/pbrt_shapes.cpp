@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include <zlib.h>
 
 #include "penumbra/scene/mesh_reader.h"
@@ -86,9 +88,12 @@ std::vector<uint32_t> read_indices(const PbrtEntity& e, size_t per, size_t verti
   std::vector<uint32_t> out;
   out.reserve(p->numbers.size());
   for (double v : p->numbers) {
-    if (v < 0 || v >= double(vertices))
-      p->loc.fail("vertex index " + std::to_string(int64_t(v)) + " out of range (the mesh has " +
-                  std::to_string(vertices) + " vertices)");
+    // Written so that NaN fails too; the value is printed as a double (a fuzzed 2.4e59 made the
+    // former int64_t conversion undefined).
+    if (!(v >= 0 && v < double(vertices)) || v != std::floor(v))
+      p->loc.fail(fmt::format("vertex index {:g} out of range or not an integer (the mesh has {} "
+                              "vertices)",
+                              v, vertices));
     out.push_back(uint32_t(v));
   }
   return out;
