@@ -20,10 +20,10 @@ void BruteForce::build(const PrimitiveSet& prims) {
 }
 
 bool BruteForce::intersect(const Ray& ray, Hit& hit) const {
-  const PreparedRay pr(ray);
   hit = Hit{};
   hit.t = ray.tmax;
   if (!traceable(ray)) return false;
+  const PreparedRay pr(ray);
   for (uint32_t id : valid_) prims_->intersect(id, pr, hit);
   return hit.valid();
 }
