@@ -60,6 +60,39 @@ TEST_F(RenderCli, UnwritableOutputIsRefusedBeforeRendering) {
   EXPECT_FALSE(std::filesystem::exists(path("a.pfm")));
 }
 
+TEST_F(RenderCli, OutputsThatMustNotBeReplacedAreRefusedBeforeRendering) {
+  const std::string cb = scene("cornell-box.json") + " --spp 4096 --quiet";
+  // A link to /dev/full: the rename would replace the link, and writing through it cannot work.
+  std::filesystem::create_symlink("/dev/full", path("full.png"));
+  EXPECT_EQ(run("render " + cb + " -o " + path("full.png")), 1);
+  EXPECT_NE(err_.find(path("full.png") + ": cannot write: it is a character device"),
+            std::string::npos)
+      << err_;
+  EXPECT_TRUE(std::filesystem::is_symlink(path("full.png")));
+  // A read-only file keeps its bytes.
+  write("old.exr", "keep me");
+  std::filesystem::permissions(path("old.exr"), std::filesystem::perms::owner_read);
+  EXPECT_EQ(run("render " + cb + " -o " + path("old.exr")), 1);
+  EXPECT_NE(err_.find("the file exists and is read-only"), std::string::npos) << err_;
+  EXPECT_EQ(err_.find("render "), std::string::npos) << err_;  // no render summary
+}
+
+TEST_F(RenderCli, AllocationsBeyondTheMemoryLimitAreRefusedNamingTheOption) {
+  const std::string cb = scene("cornell-box.json") + " --quiet -o " + path("out.png");
+  EXPECT_EQ(run("render " + cb + " --resolution 65536x65536"), 1);
+  EXPECT_NE(err_.find("--resolution 65536x65536: the film needs "), std::string::npos) << err_;
+  EXPECT_NE(err_.find("more than the memory limit"), std::string::npos) << err_;
+  EXPECT_EQ(run("render " + cb + " --resolution 2048x2048 --max-memory 100M"), 1);
+  EXPECT_NE(err_.find("memory limit of 100.0 MiB (set by --max-memory)"), std::string::npos)
+      << err_;
+  EXPECT_EQ(run("render " + cb + " --max-memory 12Q"), 1);
+  EXPECT_NE(err_.find("--max-memory: '12Q' is not a memory size"), std::string::npos) << err_;
+  EXPECT_FALSE(std::filesystem::exists(path("out.png")));
+  // The limit is the option's only effect when the render fits in it.
+  ASSERT_EQ(run("render " + cb + " --resolution 16x16 --spp 1 --max-memory 1G"), 0) << err_;
+  EXPECT_TRUE(std::filesystem::exists(path("out.png")));
+}
+
 TEST_F(RenderCli, TimeLimitStopsAndReportsTheSppReached) {
   ASSERT_EQ(run("render " + scene("cornell-box.json") +
                 " --resolution 32x32 --spp 1000000 --time-limit 1 -o " + path("out.pfm")),

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/render/radiosity/form_factors.h"
 #include "penumbra/render/radiosity/radiosity_mesh.h"
@@ -264,14 +265,17 @@ TEST(FormFactors, RefusesBadOptionsAndOversizedMatrices) {
   EXPECT_THROW(compute_form_factors(world, mesh, {"radiant", 64, 64, 0}), Error);
   EXPECT_THROW(compute_form_factors(world, mesh, {"hemicube", 63, 64, 0}), Error);
   EXPECT_THROW(compute_form_factors(world, mesh, {"raycast", 64, 0, 0}), Error);
-  // 6 x 64^2 pieces: 49152 elements, a 9 GiB matrix.
+  // 6 x 64^2 pieces: 49152 elements, a 9 GiB matrix, beyond a limit of 2 GiB (set here: the
+  // default limit depends on the machine).
+  const ScopedMemoryLimit limit(uint64_t(2) << 30);
   const RadiosityMesh big = RadiosityMesh::build(world, 1.0f / 64, 100000);
   ASSERT_EQ(big.size(), 49152u);
   try {
     compute_form_factors(world, big, {"raycast", 64, 1, 0});
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("49152 elements"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("49152 elements needs 9.0 GiB"), std::string::npos)
+        << e.what();
   }
 }
 

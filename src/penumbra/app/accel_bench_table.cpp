@@ -1,6 +1,5 @@
 #include "penumbra/app/accel_bench_table.h"
 
-#include <fstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -92,12 +91,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
     if (r.ties) o["embree_ties"] = *r.ties;
     out.push_back(o);
   }
-  write_atomically(path, [&](const std::string& temp) {
-    std::ofstream f(temp);
-    f << out.dump(2) << "\n";
-    f.close();
-    if (!f) throw Error(fmt::format("{}: cannot write", temp));
-  });
+  write_file_atomically(path, out.dump(2) + "\n");
 }
 
 }  // namespace penumbra::app

@@ -13,6 +13,7 @@
 #include "penumbra/app/progress.h"
 #include "penumbra/app/stats_format.h"
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/params.h"
 #include "penumbra/core/timer.h"
@@ -61,6 +62,14 @@ std::pair<int, int> parse_resolution(const std::string& text) {
       w <= 0 || h <= 0 || w > 65536 || h > 65536)
     throw Error(fmt::format("--resolution: expected WxH with 1..65536 each, got '{}'", text));
   return {w, h};
+}
+
+uint64_t parse_max_memory(const std::string& text) {
+  try {
+    return parse_memory_size(text);
+  } catch (const Error& e) {
+    throw Error(std::string("--max-memory: ") + e.what());
+  }
 }
 
 const char* stop_text(StopReason r) {
@@ -140,6 +149,9 @@ void add_render_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   cmd->add_option("--variance", args->variance,
                   "Also write the per-pixel variance of the mean to this image (.exr or .pfm)");
+  cmd->add_option("--max-memory", args->max_memory,
+                  "Largest allocation sized by the input (film, photon map, form factors), as "
+                  "16G, 800M, ... (default: three quarters of the machine's memory)");
   cmd->add_flag("-q,--quiet", args->quiet, "No progress display or summary");
   cmd->callback([args] {
     const int code = run_render(*args);
@@ -159,6 +171,7 @@ int run_render(const RenderArgs& args) {
     check_writable(*args.variance);
   }
   const ThreadLimit limit(args.threads.value_or(0));
+  const ScopedMemoryLimit memory(args.max_memory ? parse_max_memory(*args.max_memory) : 0);
 
   SceneDesc desc = load_scene(args.scene);
   for (const std::string& w : desc.warnings) fmt::print(stderr, "warning: {}\n", w);
@@ -171,7 +184,14 @@ int run_render(const RenderArgs& args) {
   if (args.sampler) rs.sampler = *args.sampler;
   if (args.filter) rs.filter = *args.filter;
   if (args.max_depth) rs.max_depth = *args.max_depth;
-  if (args.resolution) std::tie(rs.width, rs.height) = parse_resolution(*args.resolution);
+  if (args.resolution) {
+    std::tie(rs.width, rs.height) = parse_resolution(*args.resolution);
+    try {
+      check_memory(Film::memory_bytes(rs.width, rs.height), "the film", "lower the resolution");
+    } catch (const Error& e) {
+      throw Error("--resolution " + *args.resolution + ": " + e.what());
+    }
+  }
 
   RenderJob job(std::move(desc));
   const RenderSettings& settings = job.scene.render;  // desc is moved from

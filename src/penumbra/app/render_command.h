@@ -17,7 +17,8 @@ struct RenderArgs {
   std::optional<uint64_t> seed;
   std::optional<std::string> accel, integrator, sampler, filter, resolution;
   std::optional<double> time_limit, checkpoint, target_error;
-  std::optional<std::string> variance;  ///< where to write the per-pixel variance image
+  std::optional<std::string> variance;    ///< where to write the per-pixel variance image
+  std::optional<std::string> max_memory;  ///< the memory limit, as "16G" (core/memory_limit.h)
   bool quiet = false;
 };
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <iterator>
 
 #include <fmt/format.h>
@@ -230,13 +229,7 @@ std::string svg_of_plot(const std::vector<PlotPanel>& panels) {
 }
 
 void write_text_atomically(const std::string& path, const std::string& text) {
-  write_atomically(path, [&](const std::string& temp) {
-    std::ofstream f(temp, std::ios::binary);
-    if (!f) throw Error(temp + ": cannot open for writing");
-    f << text;
-    f.close();
-    if (!f) throw Error(temp + ": write failed");
-  });
+  write_file_atomically(path, text);
 }
 
 }  // namespace penumbra::app

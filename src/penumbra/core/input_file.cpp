@@ -12,17 +12,6 @@
 namespace penumbra {
 namespace {
 
-// What a non-regular file is, in words ("" for a regular file).
-std::string kind_of(const struct stat& st) {
-  if (S_ISREG(st.st_mode)) return "";
-  if (S_ISDIR(st.st_mode)) return "a directory";
-  if (S_ISFIFO(st.st_mode)) return "a FIFO (named pipe)";
-  if (S_ISSOCK(st.st_mode)) return "a socket";
-  if (S_ISCHR(st.st_mode)) return "a character device";
-  if (S_ISBLK(st.st_mode)) return "a block device";
-  return "not a regular file";
-}
-
 // Closes a descriptor when it goes out of scope.
 struct Fd {
   int fd;
@@ -33,6 +22,16 @@ struct Fd {
 
 }  // namespace
 
+std::string file_type_name(unsigned mode) {
+  if (S_ISREG(mode)) return "";
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO (named pipe)";
+  if (S_ISSOCK(mode)) return "a socket";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  return "not a regular file";
+}
+
 std::string read_input_file(const std::string& path, std::uint64_t max_bytes) {
   // Refuse special files by name first: opening a FIFO for reading blocks until a writer comes.
   struct stat st {};
@@ -40,7 +39,7 @@ std::string read_input_file(const std::string& path, std::uint64_t max_bytes) {
     throw InputError(path, "", std::string("cannot open file: ") + std::strerror(errno));
   }
   const auto refuse_kind = [&](const struct stat& s) {
-    const std::string kind = kind_of(s);
+    const std::string kind = file_type_name(s.st_mode);
     if (!kind.empty()) throw InputError(path, "", "is " + kind + ", not a regular file");
   };
   refuse_kind(st);

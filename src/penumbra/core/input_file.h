@@ -10,6 +10,10 @@ namespace penumbra {
 /// mistake (a sparse or special file) than a mesh.
 inline constexpr std::uint64_t kMaxInputFileBytes = std::uint64_t{64} << 30;
 
+/// What a file of this st_mode is when it is not a regular file, in words ("a directory", "a FIFO
+/// (named pipe)", "a character device", ...); "" for a regular file.
+std::string file_type_name(unsigned mode);
+
 /// Returns the whole content of the regular file at `path`. Refuses, before reading anything,
 /// what is not a regular file (a directory, FIFO, socket or device such as /dev/zero) and files
 /// larger than `max_bytes`; reads at most the size the file had when opened. Throws InputError

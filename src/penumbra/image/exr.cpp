@@ -4,6 +4,7 @@
 #include <ImfChannelList.h>
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
+#include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 
@@ -16,6 +17,7 @@
 #include <utility>
 
 #include "penumbra/core/input_file.h"
+#include "penumbra/core/output_file.h"
 
 namespace penumbra {
 namespace {
@@ -49,6 +51,28 @@ class MemoryStream : public Imf::IStream {
 
  private:
   std::string_view bytes_;
+  std::uint64_t pos_ = 0;
+};
+
+// OpenEXR's output stream into a string: OutputFile writes the line-offset table in its
+// destructor and swallows any error there, so it writes to memory (which cannot fail) and the
+// bytes are written to the file afterwards, every write checked.
+class StringStream : public Imf::OStream {
+ public:
+  StringStream() : Imf::OStream("memory") {}
+  void write(const char c[], int n) override {
+    if (n < 0) throw Iex::ArgExc("negative write");
+    const std::uint64_t end = pos_ + std::uint64_t(n);
+    if (end > bytes_.size()) bytes_.resize(end);
+    std::memcpy(bytes_.data() + pos_, c, std::size_t(n));
+    pos_ = end;
+  }
+  std::uint64_t tellp() override { return pos_; }
+  void seekp(std::uint64_t pos) override { pos_ = pos; }
+  std::string take() { return std::move(bytes_); }
+
+ private:
+  std::string bytes_;
   std::uint64_t pos_ = 0;
 };
 
@@ -176,8 +200,9 @@ void check_exr_headers(std::string_view bytes, const std::string& path, std::siz
 
 }  // namespace
 
-void write_exr(const RgbImage& image, const std::string& path) {
-  if (image.empty()) throw Error(path + ": cannot write an empty image");
+std::string encode_exr(const RgbImage& image) {
+  if (image.empty()) throw Error("cannot encode an empty image as EXR");
+  StringStream stream;
   try {
     Imf::Header header(image.width(), image.height());
     header.compression() = Imf::ZIP_COMPRESSION;
@@ -187,12 +212,24 @@ void write_exr(const RgbImage& image, const std::string& path) {
       header.channels().insert(kNames[c], Imf::Channel(Imf::FLOAT));
       frame.insert(kNames[c], rgb_slice(image.data(), c, header.dataWindow()));
     }
-    Imf::OutputFile file(path.c_str(), header);
+    Imf::OutputFile file(stream, header);
     file.setFrameBuffer(frame);
     file.writePixels(image.height());
   } catch (const std::exception& e) {
-    throw Error(path + ": cannot write EXR: " + e.what());
+    throw Error(std::string("cannot encode EXR: ") + e.what());
   }
+  return stream.take();
+}
+
+void write_exr(const RgbImage& image, const std::string& path) {
+  if (image.empty()) throw Error(path + ": cannot write an empty image");
+  std::string bytes;
+  try {
+    bytes = encode_exr(image);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
+  }
+  write_output_file(path, bytes);
 }
 
 RgbImage read_exr(const std::string& path) {

@@ -11,6 +11,8 @@ namespace penumbra {
 /// Writes a scanline EXR with 32-bit float R, G, B channels and ZIP compression.
 /// Throws Error naming the file if the image is empty or OpenEXR fails.
 void write_exr(const RgbImage& image, const std::string& path);
+/// The bytes write_exr writes. Throws Error for an empty image or if OpenEXR fails.
+std::string encode_exr(const RgbImage& image);
 
 /// Reads the R, G, B channels of an EXR as floats (half channels are widened, missing ones read as
 /// 0; a luminance-only "Y" file is copied to all three). The data window becomes the image.

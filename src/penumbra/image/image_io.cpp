@@ -1,6 +1,7 @@
 /// Format dispatch by extension and atomic (write-then-rename) file replacement.
 #include "penumbra/image/image_io.h"
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "penumbra/core/output_file.h"
 #include "penumbra/image/exr.h"
 #include "penumbra/image/pfm.h"
 #include "penumbra/image/png.h"
@@ -30,12 +32,18 @@ void check_writable(const std::string& path) {
   const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
   std::error_code ec;
   if (!fs::exists(dir, ec))
-    throw Error("cannot write '" + path + "': directory '" + dir.string() + "' does not exist");
+    throw Error(path + ": cannot write: directory '" + dir.string() + "' does not exist");
   if (!fs::is_directory(dir, ec))
-    throw Error("cannot write '" + path + "': '" + dir.string() + "' is not a directory");
-  if (fs::is_directory(p, ec)) throw Error("cannot write '" + path + "': it is a directory");
+    throw Error(path + ": cannot write: '" + dir.string() + "' is not a directory");
+  // What is there already: only a regular file penumbra may write is replaced. A device, FIFO
+  // or socket (a link to /dev/full, say) would be replaced by the rename, not written to.
+  const std::string kind = special_file_kind(path);
+  if (!kind.empty()) throw Error(path + ": cannot write: it is " + kind + ", not a regular file");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0 && (st.st_mode & 0222) == 0)
+    throw Error(path + ": cannot write: the file exists and is read-only (not replaced)");
   if (::access(dir.c_str(), W_OK) != 0)
-    throw Error("cannot write '" + path + "': directory '" + dir.string() + "' is not writable");
+    throw Error(path + ": cannot write: directory '" + dir.string() + "' is not writable");
 }
 
 ImageFormat image_format_for(const std::string& path) {
@@ -50,6 +58,7 @@ ImageFormat image_format_for(const std::string& path) {
 
 void write_atomically(const std::string& path,
                       const std::function<void(const std::string& temp_path)>& write) {
+  check_writable(path);  // again: the render may have run for hours since the first check
   const std::string temp = temp_path_for(path);
   std::error_code ignored;
   // Write the temporary file; an Error naming it is re-thrown naming path instead.
@@ -74,6 +83,10 @@ void write_atomically(const std::string& path,
     std::filesystem::remove(temp, ignored);
     throw Error(path + ": cannot replace with the finished file: " + error.message());
   }
+}
+
+void write_file_atomically(const std::string& path, std::string_view bytes) {
+  write_atomically(path, [&](const std::string& temp) { write_output_file(temp, bytes); });
 }
 
 void write_image(const RgbImage& image, const std::string& path) {

@@ -8,11 +8,11 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <fstream>
 #include <string_view>
 #include <vector>
 
 #include "penumbra/core/input_file.h"
+#include "penumbra/core/output_file.h"
 
 namespace penumbra {
 namespace {
@@ -129,27 +129,31 @@ PfmHeader parse_header(const std::string& path, const std::string& bytes, bool w
 
 }  // namespace
 
-void write_pfm(const RgbImage& image, const std::string& path) {
-  if (image.empty()) throw Error(path + ": cannot write an empty image");
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  if (!out) throw Error(path + ": cannot open for writing: " + std::strerror(errno));
-
-  out << "PF\n" << image.width() << ' ' << image.height() << "\n-1.0\n";
+std::string encode_pfm(const RgbImage& image) {
+  if (image.empty()) throw Error("cannot encode an empty image as PFM");
+  std::string out =
+      "PF\n" + std::to_string(image.width()) + ' ' + std::to_string(image.height()) + "\n-1.0\n";
+  const std::size_t header = out.size();
+  out.resize(header + std::size_t(image.width()) * std::size_t(image.height()) * 12);
   // Rows from the bottom of the picture up, each as little-endian floats.
-  std::vector<std::uint32_t> row(static_cast<std::size_t>(image.width()) * 3);
+  char* at = out.data() + header;
   for (int y = image.height() - 1; y >= 0; --y) {
     const Rgb* pixels = image.row(y);
     for (int x = 0; x < image.width(); ++x) {
       for (int c = 0; c < 3; ++c) {
-        const std::uint32_t bits = std::bit_cast<std::uint32_t>(pixels[x][c]);
-        row[3 * x + c] = std::endian::native == std::endian::little ? bits : byte_swap(bits);
+        std::uint32_t bits = std::bit_cast<std::uint32_t>(pixels[x][c]);
+        if constexpr (std::endian::native != std::endian::little) bits = byte_swap(bits);
+        std::memcpy(at, &bits, 4);
+        at += 4;
       }
     }
-    out.write(reinterpret_cast<const char*>(row.data()),
-              static_cast<std::streamsize>(row.size() * sizeof(std::uint32_t)));
   }
-  out.close();
-  if (!out) throw Error(path + ": writing the PFM failed");
+  return out;
+}
+
+void write_pfm(const RgbImage& image, const std::string& path) {
+  if (image.empty()) throw Error(path + ": cannot write an empty image");
+  write_output_file(path, encode_pfm(image));
 }
 
 RgbImage read_pfm(const std::string& path) {

@@ -11,6 +11,8 @@ namespace penumbra {
 /// Writes a colour ("PF") PFM: little-endian floats (scale -1.0), rows stored from the bottom up.
 /// Throws Error if the image is empty or the file cannot be written.
 void write_pfm(const RgbImage& image, const std::string& path);
+/// The bytes write_pfm writes. Throws Error for an empty image.
+std::string encode_pfm(const RgbImage& image);
 
 /// Reads a colour ("PF") or greyscale ("Pf", expanded to RGB) PFM of either endianness; the
 /// magnitude of the scale is ignored, so values come back bit-exact. Throws InputError naming the

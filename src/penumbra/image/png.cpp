@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "penumbra/core/input_file.h"
+#include "penumbra/core/output_file.h"
 #include "penumbra/core/text_escape.h"
 #include "penumbra/image/tone_map.h"
 
@@ -32,18 +33,12 @@ void on_png_error(png_structp png, png_const_charp message) {
 
 void on_png_warning(png_structp, png_const_charp) {}
 
-struct FileCloser {
-  void operator()(std::FILE* file) const { std::fclose(file); }
-};
-using FilePtr = std::unique_ptr<std::FILE, FileCloser>;
-
-FilePtr open_file(const std::string& path, const char* mode, const char* purpose) {
-  FilePtr file(std::fopen(path.c_str(), mode));
-  if (!file) {
-    throw Error(path + ": cannot open for " + purpose + ": " + std::strerror(errno));
-  }
-  return file;
+// libpng's output callbacks: the encoded bytes go to a string.
+void write_to_string(png_structp png, png_bytep data, png_size_t count) {
+  static_cast<std::string*>(png_get_io_ptr(png))
+      ->append(reinterpret_cast<const char*>(data), count);
 }
+void flush_nothing(png_structp) {}
 
 // Largest ancillary chunk (text, ICC profile, ...) libpng may buffer; bigger ones are skipped.
 constexpr png_alloc_size_t kMaxChunkBytes = png_alloc_size_t{8} << 20;
@@ -113,10 +108,10 @@ class PngHandle {
 };
 
 // Writes header and rows; false (with the message set) if libpng fails.
-bool png_write_all(png_structp png, png_infop info, std::FILE* file, int width, int height,
+bool png_write_all(png_structp png, png_infop info, std::string* out, int width, int height,
                    png_bytepp rows) {
   if (setjmp(png_jmpbuf(png))) return false;
-  png_init_io(png, file);
+  png_set_write_fn(png, out, write_to_string, flush_nothing);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
@@ -156,8 +151,8 @@ bool png_read_rows(png_structp png, png_infop info, png_bytepp rows) {
 
 }  // namespace
 
-void write_png(const RgbImage& image, const std::string& path, float exposure) {
-  if (image.empty()) throw Error(path + ": cannot write an empty image");
+std::string encode_png(const RgbImage& image, float exposure) {
+  if (image.empty()) throw Error("cannot encode an empty image as PNG");
 
   // Encode every row to 8-bit sRGB before libpng is involved.
   const std::size_t stride = static_cast<std::size_t>(image.width()) * 3;
@@ -171,19 +166,24 @@ void write_png(const RgbImage& image, const std::string& path, float exposure) {
     }
   }
 
-  FilePtr file = open_file(path, "wb", "writing");
+  std::string out;
   PngMessage message;
-  {
-    PngHandle handle(true, &message);
-    if (!handle.info) throw Error(path + ": cannot write PNG: out of memory");
-    if (!png_write_all(handle.png, handle.info, file.get(), image.width(), image.height(),
-                       rows.data())) {
-      throw Error(path + ": cannot write PNG: " + message.text);
-    }
+  PngHandle handle(true, &message);
+  if (!handle.info) throw Error("cannot encode PNG: out of memory");
+  if (!png_write_all(handle.png, handle.info, &out, image.width(), image.height(), rows.data()))
+    throw Error(std::string("cannot encode PNG: ") + message.text);
+  return out;
+}
+
+void write_png(const RgbImage& image, const std::string& path, float exposure) {
+  if (image.empty()) throw Error(path + ": cannot write an empty image");
+  std::string bytes;
+  try {
+    bytes = encode_png(image, exposure);
+  } catch (const Error& e) {
+    throw Error(path + ": " + e.what());
   }
-  if (std::fclose(file.release()) != 0) {
-    throw Error(path + ": cannot write PNG: " + std::strerror(errno));
-  }
+  write_output_file(path, bytes);
 }
 
 RgbImage read_png(const std::string& path) {

@@ -11,6 +11,8 @@ namespace penumbra {
 /// Writes an 8-bit RGB PNG tagged sRGB: each value is multiplied by exposure, clamped to [0, 1]
 /// (NaN to 0) and encoded with the sRGB curve. Throws Error naming the file on failure.
 void write_png(const RgbImage& image, const std::string& path, float exposure = 1.0f);
+/// The bytes write_png writes. Throws Error for an empty image or if libpng fails.
+std::string encode_png(const RgbImage& image, float exposure = 1.0f);
 
 /// Reads a PNG (any bit depth and colour type; alpha dropped, 16-bit cut to 8) and converts its
 /// 8-bit sRGB codes to linear values. Throws InputError naming the file if libpng rejects it.

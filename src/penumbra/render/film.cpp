@@ -3,10 +3,32 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "penumbra/core/memory_limit.h"
+
 namespace penumbra {
 
+namespace {
+
+// Checked before the member vector is sized: the film is the largest allocation a scene file
+// or --resolution asks for directly (65536 x 65536 pixels would be 384 GiB of accumulators).
+size_t checked_pixels(int width, int height) {
+  check_memory(Film::memory_bytes(width, height),
+               fmt::format("the film of {} x {} pixels", width, height), "lower the resolution");
+  return size_t(width) * size_t(height);
+}
+
+}  // namespace
+
+double Film::memory_bytes(int width, int height) {
+  // The accumulators, then the resolved and variance images (3 floats each) and their encoded
+  // bytes when written (at most as many again).
+  return double(width) * double(height) * double(sizeof(Pixel) + 4 * 3 * sizeof(float));
+}
+
 Film::Film(int width, int height)
-    : width_(width), height_(height), pixels_(size_t(width) * size_t(height)) {}
+    : width_(width), height_(height), pixels_(checked_pixels(width, height)) {}
 
 void Film::add_sample(int x, int y, Rgb l, float weight) {
   Pixel& p = pixels_[size_t(y) * size_t(width_) + size_t(x)];

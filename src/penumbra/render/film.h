@@ -20,7 +20,11 @@ namespace penumbra {
 /// per channel from the running sums of w^2, w^2 L and w^2 L^2.
 class Film {
  public:
+  /// Throws Error (core/memory_limit.h) when the film and the images resolved from it would
+  /// exceed the memory limit.
   Film(int width, int height);
+  /// Bytes a film of this size takes, with its resolved and variance images and an encoded copy.
+  static double memory_bytes(int width, int height);
   int width() const { return width_; }
   int height() const { return height_; }
   /// Adds sample radiance `l` with `weight` to pixel (x, y).

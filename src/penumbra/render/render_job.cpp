@@ -28,12 +28,13 @@ auto setting(const SceneDesc& scene, const char* key, Make&& make) {
 RenderJob::RenderJob(SceneDesc desc) : scene(std::move(desc)) {
   const RenderSettings& rs = scene.render;
   setting(scene, "accel", [&] { return make_accelerator(rs.accel); });  // the name, before building
+  // The film first: a resolution beyond the memory limit is refused before the structure is built.
+  film = setting(scene, "resolution", [&] { return std::make_unique<Film>(rs.width, rs.height); });
   world = std::make_unique<World>(scene, rs.accel);
   camera = make_camera(scene.camera, rs.width, rs.height);
   sampler = setting(scene, "sampler", [&] { return make_sampler(rs.sampler, rs.spp, rs.seed); });
   filter = setting(scene, "filter", [&] { return make_filter(rs.filter); });
   filter_sampler = std::make_unique<FilterSampler>(*filter);
-  film = std::make_unique<Film>(rs.width, rs.height);
   integrator =
       setting(scene, "integrator", [&] { return make_integrator(rs.integrator, *world, rs); });
 }

@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include <zlib.h>
-
+#include "penumbra/core/error.h"
+#include "penumbra/scene/gzip_reader.h"
 #include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/ply_reader.h"
 #include "penumbra/scene/transform_parser.h"
@@ -91,9 +91,10 @@ std::vector<uint32_t> read_indices(const PbrtEntity& e, size_t per, size_t verti
     // Written so that NaN fails too; the value is printed as a double (a fuzzed 2.4e59 made the
     // former int64_t conversion undefined).
     if (!(v >= 0 && v < double(vertices)) || v != std::floor(v))
-      p->loc.fail(fmt::format("vertex index {:g} out of range or not an integer (the mesh has {} "
-                              "vertices)",
-                              v, vertices));
+      p->loc.fail(
+          fmt::format("vertex index {:g} out of range or not an integer (the mesh has {} "
+                      "vertices)",
+                      v, vertices));
     out.push_back(uint32_t(v));
   }
   return out;
@@ -219,17 +220,15 @@ std::string pbrt_resolve(const std::string& file, const std::vector<std::string>
 }
 
 std::string pbrt_read_file(const std::string& path, const PbrtLoc& loc) {
+  // Both through read_input_file: regular files only, bounded by their size. Gzip data is
+  // inflated in memory up to the memory limit; its errors (at their byte offset) also name the
+  // directive that asked for the file.
   if (!path.ends_with(".gz")) return read_file_contents(path);
-  gzFile f = gzopen(path.c_str(), "rb");
-  if (!f) loc.fail("cannot open " + path);
-  std::string out;
-  char buf[1 << 16];
-  int n;
-  while ((n = gzread(f, buf, sizeof buf)) > 0) out.append(buf, size_t(n));
-  const bool ok = n == 0;
-  gzclose(f);
-  if (!ok) loc.fail("corrupt gzip data in " + path);
-  return out;
+  try {
+    return read_gzip_file(path);
+  } catch (const InputError& e) {
+    loc.fail(e.what());
+  }
 }
 
 std::vector<ShapeDesc> map_pbrt_shape(const PbrtEntity& e, const PbrtShapeContext& ctx,

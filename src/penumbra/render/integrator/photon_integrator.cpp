@@ -83,27 +83,40 @@ std::string PhotonIntegrator::name() const {
 
 void PhotonIntegrator::preprocess(RenderJob& job) {
   const PhotonTracer tracer(world_, max_depth_);
+  // A map beyond the memory limit is refused naming the parameter that sized it.
+  const auto named = [](const char* param, uint64_t n, const auto& trace) {
+    try {
+      return trace();
+    } catch (const Error& e) {
+      throw Error(fmt::format("photon: {}={}: {}", param, n, e.what()));
+    }
+  };
   // The caustic map, then the global map with the surface normals of the photons that will
   // carry precomputed irradiance.
   job.report_preprocess("caustic photons", 0.0);
-  PhotonBatch caustic = tracer.trace_batch(
-      caustic_photons_, hash_combine(seed_, 0xca05), PhotonStore::kCaustic, job.options.cancel,
-      [&](double f) { job.report_preprocess("caustic photons", f); });
+  PhotonBatch caustic = named("caustic_photons", caustic_photons_, [&] {
+    return tracer.trace_batch(caustic_photons_, hash_combine(seed_, 0xca05), PhotonStore::kCaustic,
+                              job.options.cancel,
+                              [&](double f) { job.report_preprocess("caustic photons", f); });
+  });
   caustic_ = PhotonMap(std::move(caustic.photons));
   if (job.cancelled()) return;
   job.report_preprocess("global photons", 0.0);
-  PhotonBatch global = tracer.trace_batch(
-      global_photons_, hash_combine(seed_, 0x610b), PhotonStore::kAll, job.options.cancel,
-      [&](double f) { job.report_preprocess("global photons", f); });
+  PhotonBatch global = named("photons", global_photons_, [&] {
+    return tracer.trace_batch(global_photons_, hash_combine(seed_, 0x610b), PhotonStore::kAll,
+                              job.options.cancel,
+                              [&](double f) { job.report_preprocess("global photons", f); });
+  });
   global_ = PhotonMap(std::move(global.photons));
   if (job.cancelled() || !use_irradiance_) return;
   // Where irradiance is precomputed: the hits of a separate, smaller set of photons, so that the
   // points are distributed like the photons but independent of them. At the map's own photons,
   // a point in a locally sparse patch would have a large Voronoi cell (be the nearest point for
   // many lookups) and a low estimate: a bias of about -1/k, measured -1.0% at k = 50.
-  const PhotonBatch sites =
-      tracer.trace_batch(global_photons_ / kIrradianceStride, hash_combine(seed_, 0x5173),
-                         PhotonStore::kAll, job.options.cancel, {}, true);
+  const PhotonBatch sites = named("photons", global_photons_, [&] {
+    return tracer.trace_batch(global_photons_ / kIrradianceStride, hash_combine(seed_, 0x5173),
+                              PhotonStore::kAll, job.options.cancel, {}, true);
+  });
   std::vector<IrradiancePoint> points;
   points.reserve(sites.photons.size());
   for (size_t i = 0; i < sites.photons.size(); ++i)

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/core/timer.h"
@@ -57,6 +58,10 @@ SppmIntegrator::SppmIntegrator(const World& world, const ParamList& params,
       seed_(settings.seed),
       light_sampler_(world.lights(), "power") {
   params.check_all_used();
+  check_memory(
+      double(settings.width) * double(settings.height) * double(sizeof(Pixel)),
+      fmt::format("sppm: the visible points of {} x {} pixels", settings.width, settings.height),
+      "lower the resolution");
 }
 
 std::string SppmIntegrator::name() const {
@@ -142,10 +147,14 @@ void SppmIntegrator::photon_pass(RenderJob& job, int pass, uint64_t& rays) {
   deposits_.resize(chunks);
   const uint64_t seed = hash_combine(seed_, uint64_t(pass));
   std::atomic<uint64_t> traced{0};
+  // The deposits of a pass grow with the photons and with how many visible points each photon
+  // finds (the radius): bounded by the memory limit.
+  std::atomic<uint64_t> deposited{0};
+  std::atomic<bool> over{false};
   parallel_for(chunks, [&](size_t c) {
     std::vector<Deposit>& out = deposits_[c];
     out.clear();
-    if (job.cancelled()) return;
+    if (job.cancelled() || over.load(std::memory_order_relaxed)) return;
     uint64_t r = 0;
     const uint64_t end = std::min(n, uint64_t(c + 1) * kChunk);
     for (uint64_t i = uint64_t(c) * kChunk; i < end; ++i)
@@ -166,7 +175,13 @@ void SppmIntegrator::photon_pass(RenderJob& job, int pass, uint64_t& rays) {
         return true;
       });
     traced.fetch_add(r, std::memory_order_relaxed);
+    const uint64_t now = deposited.fetch_add(out.size(), std::memory_order_relaxed) + out.size();
+    if (double(now) * sizeof(Deposit) > double(memory_limit())) over.store(true);
   });
+  if (over.load())
+    check_memory(double(deposited.load()) * sizeof(Deposit),
+                 fmt::format("sppm: the photon deposits of pass {} (photons={})", pass, n),
+                 "use fewer photons per pass or a smaller radius");
   rays += traced.load();
   photons_emitted_ += n;
   // Deposits summed per pixel in chunk order, so in photon order.

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include <fmt/format.h>
+
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/geometry/float_error.h"
@@ -130,9 +133,17 @@ PhotonBatch PhotonTracer::trace_batch(uint64_t n, uint64_t seed, PhotonStore wha
   std::vector<std::vector<OctDirection>> found_normals(normals ? chunks : 0);
   std::vector<uint64_t> rays(chunks, 0);
   std::atomic<size_t> done{0};
+  // The photons stored so far, bounded by the memory limit: a photon that bounces keeps being
+  // stored, so the count emitted does not bound the map. Counted twice, for the chunks and the
+  // batch they are copied into.
+  const double bytes_per_photon =
+      2.0 * double(sizeof(Photon) + (normals ? sizeof(OctDirection) : 0));
+  std::atomic<uint64_t> stored{0};
+  std::atomic<bool> over{false};
 
   parallel_for(chunks, [&](size_t c) {
     if (cancel && cancel->load(std::memory_order_relaxed)) return;
+    if (over.load(std::memory_order_relaxed)) return;
     std::vector<Photon>& out = found[c];
     // What a map keeps; a caustic map ends each path at its first non-specular hit.
     const auto keep = [&](const PhotonHit& h) {
@@ -148,10 +159,18 @@ PhotonBatch PhotonTracer::trace_batch(uint64_t n, uint64_t seed, PhotonStore wha
     };
     const uint64_t begin = uint64_t(c) * kChunk, end = std::min(n, begin + kChunk);
     for (uint64_t i = begin; i < end; ++i) rays[c] += trace(i, seed, n, keep);
+    const uint64_t now = stored.fetch_add(out.size(), std::memory_order_relaxed) + out.size();
+    if (double(now) * bytes_per_photon > double(memory_limit())) over.store(true);
     const size_t finished = done.fetch_add(1, std::memory_order_relaxed) + 1;
     if (progress) progress(double(finished) / double(chunks));
   });
 
+  if (over.load()) {
+    check_memory(double(stored.load()) * bytes_per_photon,
+                 fmt::format("the photon map of {} photons emitted ({} stored before it stopped)",
+                             n, stored.load()),
+                 "emit fewer photons");
+  }
   // Chunks in index order: the same photons in the same order at any thread count.
   size_t total = 0;
   for (const auto& f : found) total += f.size();

@@ -8,6 +8,7 @@
 
 #include "penumbra/core/dvec3.h"
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/core/timer.h"
@@ -21,14 +22,11 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-/// An n x n zero matrix, refused beyond kMaxFormFactorBytes.
+/// An n x n zero matrix, refused beyond the memory limit.
 FormFactors allocate(size_t n) {
-  const double bytes = double(n) * double(n) * sizeof(float);
-  if (bytes > double(kMaxFormFactorBytes))
-    throw Error(
-        fmt::format("form factors: {} elements need a dense {:.1f} GiB matrix, more than "
-                    "the {} GiB cap; use a larger patch size",
-                    n, bytes / double(1 << 30), kMaxFormFactorBytes >> 30));
+  check_memory(double(n) * double(n) * sizeof(float),
+               fmt::format("radiosity: the dense form-factor matrix of {} elements", n),
+               "use a larger patch size, fewer max_elements, or hierarchy=true");
   FormFactors ff;
   ff.n = n;
   ff.f.assign(n * n, 0.0f);

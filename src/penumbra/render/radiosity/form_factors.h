@@ -16,9 +16,6 @@ namespace penumbra {
 class World;
 class RadiosityMesh;
 
-/// Largest dense form-factor matrix compute_form_factors builds: 2 GiB of floats (n <= 23170).
-inline constexpr size_t kMaxFormFactorBytes = size_t(2) << 30;
-
 /// How to compute form factors.
 struct FormFactorOptions {
   std::string method = "raycast";  ///< "raycast" or "hemicube"
@@ -44,7 +41,7 @@ struct FormFactors {
 };
 
 /// Form factors of `mesh` (built from `world`) by options.method; throws Error for an unknown
-/// method, bad parameters, or a matrix larger than kMaxFormFactorBytes.
+/// method, bad parameters, or a matrix beyond the memory limit (core/memory_limit.h).
 FormFactors compute_form_factors(const World& world, const RadiosityMesh& mesh,
                                  const FormFactorOptions& options);
 

@@ -228,7 +228,7 @@ void HierarchicalRadiosity::link_refs(uint32_t r, uint32_t s, NewLinks& out) {
   const ClusterEstimate e = estimate_cluster(r, s);
   if (!e.interacts) return;
   if (admissible(e)) {
-    (is_cluster(r) ? out.clusters : out.nodes).push_back({r, s, -1.f, 0.f});
+    add_link(is_cluster(r) ? out.clusters : out.nodes, {r, s, -1.f, 0.f});
     return;
   }
   const bool can_r = is_cluster(r) || splittable(r), can_s = is_cluster(s) || splittable(s);

@@ -4,8 +4,11 @@
 #include <cmath>
 #include <numbers>
 
+#include <fmt/format.h>
+
 #include "penumbra/core/dvec3.h"
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
 
@@ -186,6 +189,18 @@ double HierarchicalRadiosity::carried(uint32_t p, uint32_t q, const Estimate& e)
   return patches_[nodes_[p].top].rho.max_channel() * lum(b_[q]) * std::max(e.f_pq, e.f_qp);
 }
 
+void HierarchicalRadiosity::add_link(std::vector<Link>& out, const Link& l) const {
+  const size_t n = out.size() + 1;
+  if (n >= (size_t(1) << 16) && (n & (n - 1)) == 0) {
+    // The links of every list at this size again (a vector's growth), and the nodes so far.
+    const double bytes = 2.0 * double(n + links_.size() + cluster_links_.size()) * sizeof(Link) +
+                         double(nodes_.size()) * sizeof(Node);
+    check_memory(bytes, fmt::format("hierarchical radiosity: a refinement to {} links", n),
+                 "raise epsilon or lower link_grid");
+  }
+  out.push_back(l);
+}
+
 // Refine(p, q) of Hanrahan et al. 1991: link p <- q if the oracle accepts or nothing can be split,
 // else split the side that looks larger from the other (q when F_pq >= F_qp) and recurse;
 // `force` splits once whatever the oracle says (a link across a shadow boundary).
@@ -194,7 +209,7 @@ void HierarchicalRadiosity::refine(uint32_t p, uint32_t q, std::vector<Link>& ou
   if (!e.interacts) return;
   const bool can_p = splittable(p), can_q = splittable(q);
   if ((!can_p && !can_q) || (!force && accept(p, q, e))) {
-    out.push_back({p, q, -1.f, 0.f});  // form factor evaluated later, in parallel
+    add_link(out, {p, q, -1.f, 0.f});  // form factor evaluated later, in parallel
     return;
   }
   bool split_q = e.straddles ? nodes_[q].area >= nodes_[p].area : e.f_pq >= e.f_qp;
@@ -340,8 +355,7 @@ void HierarchicalRadiosity::rerefine(NewLinks& kept, NewLinks& fresh) {
         const Estimate e = estimate(l.receiver, l.source);
         // A partly occluded link that carries more than the threshold crosses a shadow
         // boundary: refine it, whatever the oracle says of its unoccluded form factors.
-        const bool partial =
-            l.vis > 0 && l.vis < 1 && carried(l.receiver, l.source, e) > eps_abs_;
+        const bool partial = l.vis > 0 && l.vis < 1 && carried(l.receiver, l.source, e) > eps_abs_;
         verdict[i] =
             uint8_t((accept(l.receiver, l.source, e) ? 0 : kReject) | (partial ? kPartial : 0));
       },

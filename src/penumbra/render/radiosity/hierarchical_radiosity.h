@@ -169,6 +169,9 @@ class HierarchicalRadiosity {
   bool accept(uint32_t p, uint32_t q, const Estimate& e) const;
   double carried(uint32_t p, uint32_t q, const Estimate& e) const;
   void refine(uint32_t p, uint32_t q, std::vector<Link>& out, bool force = false);
+  /// Appends l to out, refusing (core/memory_limit.h) a refinement whose links and nodes would
+  /// exceed the memory limit: checked as out's size passes each power of two from 2^16.
+  void add_link(std::vector<Link>& out, const Link& l) const;
   void evaluate_links(std::vector<Link>& links, size_t first, const Visibility& vis);
   void index_links();
   double gather_push_pull();

@@ -4,7 +4,6 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -83,11 +82,7 @@ void write_radiosity_solution(const std::string& path, const RadiosityMesh& mesh
     put(out, uint8_t(el.corners));
     for (int k = 0; k < el.corners; ++k) put(out, next++);
   }
-  write_atomically(path, [&](const std::string& temp) {
-    std::ofstream f(temp, std::ios::binary);
-    f.write(out.data(), std::streamsize(out.size()));
-    if (!f) throw Error("cannot write " + temp);
-  });
+  write_file_atomically(path, out);
 }
 
 std::vector<Rgb> read_radiosity_solution(const std::string& path, RadiosityMesh& mesh,

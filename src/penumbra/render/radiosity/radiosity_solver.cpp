@@ -4,7 +4,10 @@
 #include <cmath>
 #include <cstdint>
 
+#include <fmt/format.h>
+
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
 
@@ -156,6 +159,11 @@ void solve_gauss_seidel(Run& run) {
 void solve_progressive(Run& run) {
   const RadiositySystem& sys = run.sys;
   const size_t n = sys.n;
+  check_memory(double(n) * double(n) * sizeof(float),
+               fmt::format("radiosity: the progressive solver's transposed copy of the {} x {} "
+                           "form-factor matrix",
+                           n, n),
+               "use another solver or fewer elements");
   std::vector<float> ft(n * n);
   parallel_for(n, [&](size_t i) {
     for (size_t j = 0; j < n; ++j) ft[i * n + j] = sys.f[j * n + i];
