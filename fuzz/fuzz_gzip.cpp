@@ -1,10 +1,11 @@
 /// Fuzz target: the gzip reader behind pbrt's `.gz` files (gunzip), in memory, with the output
-/// bounded at 16 MiB (zip bombs must stop there, not exhaust the fuzzer's memory).
+/// bounded at 1 MiB: zip bombs must stop there. (At 16 MiB every bomb the fuzzer made took a
+/// sixth of a second to inflate under ASan, and the target ran 94 inputs a second.)
 #include "fuzz_common.h"
 #include "penumbra/scene/gzip_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return penumbra::fuzz::check_reader(data, size, [](std::string_view bytes) {
-    penumbra::gunzip(bytes, "fuzz.gz", std::uint64_t{16} << 20);
+    penumbra::gunzip(bytes, "fuzz.gz", std::uint64_t{1} << 20);
   });
 }
