@@ -54,6 +54,11 @@ put("obj", "quad-attributes.obj",
     "vt 1 1\nvt 0 1\nvn 0 0 1\ng g1\nusemtl m\ns off\nf 1/1/1 2/2/1 3/3/1 4/4/1\n")
 put("obj", "negative.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\nvn 0 0 1\nf 1//1 2//1 3//1\r\n"
     "l 1 2\np 1\nvp 0.5\n")
+# OBJ polygons: concave (ear clipping), with a hole cut open, not planar, crossing, no area.
+put("obj", "polygons.obj",
+    "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 1 1 0\nv 1 2 0\nv 0 2 0\nf 4 5 6 1 2 3\n"
+    "v 4 0 0\nv 4 4 0\nv 0 4 0\nv 1 3 0\nv 3 3 0\nv 3 1 0\nf 1 7 8 9 1 4 10 11 12 4\n"
+    "v 1 1 0.3\nf 1 2 13 6\nf 1 8 2 10\nf 1 4 8 4\n")
 
 # 2D laboratory text.
 for f in ("scenes/lab2d/lecture.txt", "scenes/lab2d/objects.txt"):

@@ -152,6 +152,31 @@ TEST_F(CliTest, AccelBenchAndCollideRefuseEmptyAndOutOfRangeMeshes) {
   EXPECT_NE(err_.find("no triangles"), std::string::npos) << err_;
 }
 
+// A mesh's warnings (here an OBJ polygon that is not planar) are printed by every command that
+// reads it: render and accel-bench through a scene, accel-bench and collide directly.
+TEST_F(CliTest, MeshWarningsArePrintedByRenderAccelBenchAndCollide) {
+  write("bent.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0.5\nv -1 1 0\nf 1 2 3 4\n");
+  write("bent.json",
+        R"({"camera": {"type": "pinhole", "position": [0, 0, 5], "look_at": [0, 0, 0]},
+            "materials": {"m": {"type": "diffuse"}},
+            "lights": [{"type": "point", "position": [0, 0, 5], "intensity": [10, 10, 10]}],
+            "shapes": [{"type": "obj", "file": "bent.obj", "material": "m"}]})");
+  const std::string warning =
+      "warning: " + path("bent.obj") + ":line 5: face of 4 vertices is not planar";
+  ASSERT_EQ(run("render " + path("bent.json") + " --resolution 8x8 --spp 1 -o " + path("o.pfm")), 0)
+      << err_;
+  EXPECT_NE(err_.find(warning), std::string::npos) << err_;
+  for (const char* input : {"bent.json", "bent.obj"}) {
+    ASSERT_EQ(run("accel-bench " + path(input) + " --accel bvh --rays 100"), 0) << err_;
+    EXPECT_NE(err_.find(warning), std::string::npos) << input << ": " << err_;
+  }
+  ASSERT_EQ(run("collide " + path("bent.obj") + " " + path("bent.obj") + " --translate-b 0,0,1"), 0)
+      << err_;
+  EXPECT_NE(err_.find(warning), std::string::npos) << err_;
+  EXPECT_NE(err_.find(warning, err_.find(warning) + 1), std::string::npos)  // once per mesh
+      << err_;
+}
+
 // --repeat N takes medians of N runs; with Embree each structure also gets the median ratio of
 // its incoherent throughput to Embree's over runs paired with one of Embree's.
 TEST_F(CliTest, AccelBenchRepeatsAndPairsRunsWithEmbree) {

@@ -90,10 +90,13 @@ TEST(ObjReader, NegativeIndicesResolveRelativeToEnd) {
   EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 0, 3, 2, 2, 3, 0}));
 }
 
-TEST(ObjReader, PolygonsAreFanTriangulatedInFaceOrder) {
-  const std::string text = kTriangle + "v 1 1 0\nv 2 2 0\nf 1 2 3 4 5\nf 5 4 3\n";
-  const TriangleMesh mesh = parse_obj(text, "t.obj");
-  EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 0, 3, 4, 4, 3, 2}));
+TEST(ObjReader, ConvexPolygonsAreFanTriangulatedInFaceOrder) {
+  // The pentagon (0,0), (1,0), (2,1), (1,2), (0,1); concave ones: obj_triangulation_test.cpp.
+  const std::string text = kTriangle + "v 2 1 0\nv 1 2 0\nf 1 2 4 5 3\nf 5 4 3\n";
+  std::vector<std::string> warnings;
+  const TriangleMesh mesh = parse_obj(text, "t.obj", &warnings);
+  EXPECT_EQ(mesh.indices, (std::vector<uint32_t>{0, 1, 3, 0, 3, 4, 0, 4, 2, 4, 3, 2}));
+  EXPECT_TRUE(warnings.empty());
 }
 
 TEST(ObjReader, DedupesAttributeTriples) {

@@ -271,8 +271,14 @@ void run_accel_bench(const AccelBenchArgs& args) {
   const Timer load_timer;
   const bool is_scene =
       args.input.size() >= 5 && args.input.substr(args.input.size() - 5) == ".json";
-  const TriangleMesh mesh =
-      is_scene ? scene_triangles(load_scene(args.input)) : read_mesh(args.input);
+  std::vector<std::string> warnings;
+  const TriangleMesh mesh = [&] {
+    if (!is_scene) return read_mesh(args.input, &warnings);
+    const SceneDesc desc = load_scene(args.input);
+    warnings = desc.warnings;
+    return scene_triangles(desc);
+  }();
+  print_warnings(warnings);
   check_mesh_input(mesh, args.input);
   PrimitiveSet prims;
   prims.add_mesh(mesh, Transform(), 0);

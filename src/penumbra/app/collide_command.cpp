@@ -207,8 +207,11 @@ void run_collide(const CollideArgs& args) {
   const ThreadLimit limit(args.threads);
   nlohmann::json out;
   const Timer load;
-  const TriangleMesh mesh_a = read_mesh(args.mesh_a);
-  const TriangleMesh mesh_b = args.mesh_b.empty() ? TriangleMesh() : read_mesh(args.mesh_b);
+  std::vector<std::string> warnings;
+  const TriangleMesh mesh_a = read_mesh(args.mesh_a, &warnings);
+  const TriangleMesh mesh_b =
+      args.mesh_b.empty() ? TriangleMesh() : read_mesh(args.mesh_b, &warnings);
+  print_warnings(warnings);
   check_mesh_input(mesh_a, args.mesh_a);
   if (!args.mesh_b.empty()) check_mesh_input(mesh_b, args.mesh_b);
   fmt::print("loaded in {:.0f} ms; builds on {} thread(s), queries on one\n", load.elapsed_ms(),

@@ -1,6 +1,7 @@
 #include "penumbra/app/mesh_check.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include <fmt/format.h>
 
@@ -22,6 +23,10 @@ void check_mesh_input(const TriangleMesh& mesh, const std::string& file) {
                                    "triangle {})",
                                    p.x, p.y, p.z, kMaxCoordinate, k / 3));
   }
+}
+
+void print_warnings(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings) fmt::print(stderr, "warning: {}\n", w);
 }
 
 }  // namespace penumbra

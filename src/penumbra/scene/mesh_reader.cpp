@@ -10,10 +10,10 @@
 
 namespace penumbra {
 
-TriangleMesh read_mesh(const std::string& path) {
+TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* warnings) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".obj") return read_obj(path);
+  if (ext == ".obj") return read_obj(path, warnings);
   if (ext == ".ply") return read_ply(path);
   throw InputError(path, "", "unsupported mesh format '" + ext + "' (expected one of: .obj, .ply)");
 }

@@ -62,8 +62,9 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;
   std::vector<SceneParams> lights;  ///< type "point", ...
   std::vector<ShapeDesc> shapes;
-  /// Problems that did not stop loading ("FILE:LINE:COLUMN: message"): what an importer skipped,
-  /// approximated or did not read. The CLI prints them.
+  /// Problems that did not stop loading ("FILE:PLACE: message"): what an importer skipped,
+  /// approximated or did not read, and the warnings of mesh files (an OBJ polygon that is not
+  /// planar). The CLI prints them.
   std::vector<std::string> warnings;
 };
 

@@ -29,8 +29,8 @@ std::string parse_name(const json& v, const JsonPlace& place) {
 RenderSettings parse_render(const json& v, const JsonPlace& place) {
   if (!v.is_object()) place.fail("expected an object");
   json_check_keys(v, place,
-                  {"resolution", "spp", "max_depth", "seed", "integrator", "accel", "sampler", "filter",
-                   "background"},
+                  {"resolution", "spp", "max_depth", "seed", "integrator", "accel", "sampler",
+                   "filter", "background"},
                   "the render section");
   RenderSettings r;
   if (const json* res = json_find(v, "resolution")) {
@@ -118,7 +118,8 @@ SceneDesc parse_scene(const std::string& json_text, const std::string& file_name
   const json& shapes = json_array(json_require(root, place, "shapes"), shapes_place);
   scene.shapes.reserve(shapes.size());
   for (size_t i = 0; i < shapes.size(); ++i)
-    scene.shapes.push_back(parse_shape(shapes[i], shapes_place.index(i), material_names, base_dir));
+    scene.shapes.push_back(
+        parse_shape(shapes[i], shapes_place.index(i), material_names, base_dir, scene.warnings));
   return scene;
 }
 

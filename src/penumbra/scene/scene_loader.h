@@ -4,7 +4,8 @@
 /// The loader parses and validates the sections whose keys are fixed ("render", "shapes", the top
 /// level); cameras, materials and lights are kept as SceneParams (a type plus its raw object) for
 /// the renderer's factories, which read and check their own keys. Every error is an InputError
-/// "FILE:/json/path: problem" (syntax errors: "FILE:LINE:COLUMN: problem").
+/// "FILE:/json/path: problem" (syntax errors: "FILE:LINE:COLUMN: problem"). The warnings of mesh
+/// files (obj_reader.h) go to SceneDesc::warnings.
 #include <string>
 
 #include "penumbra/scene/scene_desc.h"

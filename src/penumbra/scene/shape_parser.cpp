@@ -110,9 +110,10 @@ TriangleMesh parse_inline_mesh(const json& v, const JsonPlace& place) {
   return mesh;
 }
 
-// Reads the OBJ or PLY file named by "file", relative to `base_dir` unless absolute.
+// Reads the OBJ or PLY file named by "file", relative to `base_dir` unless absolute; appends
+// the reader's warnings to `warnings`.
 TriangleMesh read_mesh_file(const json& v, const JsonPlace& place, const std::string& type,
-                            const std::string& base_dir) {
+                            const std::string& base_dir, std::vector<std::string>& warnings) {
   const JsonPlace fp = place.key("file");
   const std::string file = json_string(json_require(v, place, "file"), fp);
   if (file.empty()) fp.fail("must not be empty");
@@ -128,7 +129,7 @@ TriangleMesh read_mesh_file(const json& v, const JsonPlace& place, const std::st
   if (!fs::exists(path, ec)) fp.fail("mesh file not found: " + resolved);
   if (!fs::is_regular_file(path, ec)) fp.fail("not a regular file: " + resolved);
 
-  TriangleMesh mesh = read_mesh(resolved);
+  TriangleMesh mesh = read_mesh(resolved, &warnings);
   if (mesh.triangle_count() == 0) fp.fail("mesh file has no triangles: " + resolved);
   return mesh;
 }
@@ -163,7 +164,7 @@ std::string unknown_material(const std::string& name, const std::set<std::string
 }  // namespace
 
 ShapeDesc parse_shape(const json& v, const JsonPlace& place, const std::set<std::string>& materials,
-                      const std::string& base_dir) {
+                      const std::string& base_dir, std::vector<std::string>& warnings) {
   if (!v.is_object()) place.fail("expected an object");
   const std::string type = json_string(json_require(v, place, "type"), place.key("type"));
   check_shape_keys(v, place, type);
@@ -207,7 +208,7 @@ ShapeDesc parse_shape(const json& v, const JsonPlace& place, const std::set<std:
   } else if (type == "mesh") {
     shape.geometry = parse_inline_mesh(v, place);
   } else {
-    shape.geometry = read_mesh_file(v, place, type, base_dir);
+    shape.geometry = read_mesh_file(v, place, type, base_dir, warnings);
   }
   return shape;
 }

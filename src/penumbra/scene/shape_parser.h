@@ -3,6 +3,7 @@
 /// mesh read from an OBJ or PLY file (see docs/scene-format.md).
 #include <set>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -14,8 +15,9 @@ namespace penumbra {
 /// Parses the shape `v` found at `place` (e.g. "/shapes/3"): its keys, geometry, material (one of
 /// `materials`), emission and transform. Mesh files are resolved relative to `base_dir`. Throws
 /// InputError naming the JSON path of the first problem; errors inside a mesh file come from its
-/// reader and name that file.
+/// reader and name that file, and so do its warnings, appended to `warnings`.
 ShapeDesc parse_shape(const nlohmann::json& v, const JsonPlace& place,
-                      const std::set<std::string>& materials, const std::string& base_dir);
+                      const std::set<std::string>& materials, const std::string& base_dir,
+                      std::vector<std::string>& warnings);
 
 }  // namespace penumbra
