@@ -52,7 +52,9 @@ std::string gunzip(std::string_view compressed, const std::string& name, uint64_
                          "decompresses to more than " + format_bytes(double(max_bytes)) +
                              " (the memory limit; --max-memory changes it)");
       // Room for one byte more than the bound: data of exactly max_bytes ends the stream in it.
-      const size_t grow = size_t(std::min<uint64_t>(max_bytes + 1 - out.size(), 1 << 20));
+      // The output doubles from 64 KiB up to 1 MiB steps, so a small file allocates little.
+      const uint64_t step = std::clamp<uint64_t>(out.size(), 1 << 16, 1 << 20);
+      const size_t grow = size_t(std::min<uint64_t>(max_bytes + 1 - out.size(), step));
       const size_t old = out.size();
       out.resize(old + grow);
       inf.z.next_out = reinterpret_cast<unsigned char*>(out.data() + old);
