@@ -44,6 +44,22 @@ TEST_F(RenderCli, PathTracesTheCornellBoxAndReportsItsRates) {
     EXPECT_NE(err_.find(what), std::string::npos) << what << "\n" << err_;
 }
 
+// An instanced scene renders and reports its instances, objects and geometry memory; radiosity
+// refuses it by name.
+TEST_F(RenderCli, InstancedSceneReportsItsInstances) {
+  ASSERT_EQ(run("render " + scene("instances.json") + " --resolution 32x20 --spp 1 -o " +
+                path("out.png")),
+            0)
+      << err_;
+  EXPECT_NE(err_.find("49 instances of 1 objects (3674 primitives stored once)"), std::string::npos)
+      << err_;
+  EXPECT_NE(run("render " + scene("instances.json") +
+                " --resolution 16x16 --integrator radiosity -o " + path("r.png")),
+            0);
+  EXPECT_NE(err_.find("scenes with instanced objects are not supported"), std::string::npos)
+      << err_;
+}
+
 // An output that cannot be written is refused before the render starts (it used to be found
 // only after the whole render), and nothing is created.
 TEST_F(RenderCli, UnwritableOutputIsRefusedBeforeRendering) {

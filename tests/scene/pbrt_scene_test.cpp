@@ -124,9 +124,10 @@ TEST(PbrtShapes, MeshErrors) {
   EXPECT_EQ(pbrt_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]"),
             "test.pbrt:2:1: Shape \"trianglemesh\" needs \"integer indices\" (optional only with "
             "exactly 3 vertices)");
-  EXPECT_EQ(pbrt_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
-                       "  \"integer indices\" [0 1 3]"),
-            "test.pbrt:3:3: vertex index 3 out of range or not an integer (the mesh has 3 vertices)");
+  EXPECT_EQ(
+      pbrt_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
+                 "  \"integer indices\" [0 1 3]"),
+      "test.pbrt:3:3: vertex index 3 out of range or not an integer (the mesh has 3 vertices)");
   EXPECT_EQ(pbrt_error("WorldBegin\nShape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n"
                        "  \"normal N\" [0 0 1]"),
             "test.pbrt:3:3: \"N\" has 1 normals for 3 positions");
@@ -185,13 +186,10 @@ TEST(PbrtShapes, DiskIsTessellatedFacingPlusZ) {
 }
 
 TEST(PbrtShapes, UnsupportedShapesAreSkippedWithAWarning) {
-  const SceneDesc s = pbrt_scene(
-      "WorldBegin\nShape \"cylinder\" \"float radius\" 1\nShape \"sphere\"\n"
-      "ObjectBegin \"thing\"\nShape \"sphere\"\nObjectEnd\nObjectInstance \"thing\"\n");
+  const SceneDesc s =
+      pbrt_scene("WorldBegin\nShape \"cylinder\" \"float radius\" 1\nShape \"sphere\"\n");
   EXPECT_EQ(s.shapes.size(), 1u);
   EXPECT_TRUE(has_warning(s, "test.pbrt:2:1: Shape \"cylinder\" is not supported; skipped"));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:4:1: ObjectBegin \"thing\": object instancing"));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:7:1: ObjectInstance \"thing\""));
   EXPECT_FALSE(has_warning(s, "unused"));
 }
 

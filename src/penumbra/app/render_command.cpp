@@ -204,6 +204,16 @@ int run_render(const RenderArgs& args) {
                job.integrator->name(), settings.width, settings.height, settings.spp,
                settings.sampler, job.filter->name(), thread_count(),
                job.world->accelerator().name(), format_duration(accel.build_ms * 1e-3));
+  if (!args.quiet && job.world->has_instances()) {
+    const InstanceBvh& top = job.world->instances();
+    size_t object_prims = 0;
+    for (const InstancedObject& o : top.objects()) object_prims += o.prims->size();
+    fmt::print(stderr,
+               "  {} instances of {} objects ({} primitives stored once), geometry and "
+               "structures {:.1f} MiB\n",
+               top.instances().size(), top.objects().size(), object_prims,
+               double(job.world->geometry_bytes()) / (1024.0 * 1024.0));
+  }
 
   // Sobol' with a power-of-two spp is progressive (every prefix of 2^k samples is a net);
   // stratified samplers and other spp are not.

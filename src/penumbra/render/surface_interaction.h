@@ -5,6 +5,7 @@
 #include "penumbra/core/color.h"
 #include "penumbra/core/ray.h"
 #include "penumbra/geometry/float_error.h"
+#include "penumbra/geometry/hit.h"
 #include "penumbra/render/light/light.h"
 
 namespace penumbra {
@@ -14,19 +15,20 @@ class Light;
 
 /// A surface point seen along a ray.
 struct SurfaceInteraction {
-  Vec3 p;            ///< the point
-  Vec3 p_error;      ///< absolute error bound of p per axis
-  Vec3 ng;           ///< unit geometric normal (triangle winding / outward for spheres)
-  Vec3 ns;           ///< unit shading normal, on the same side as ng
-  Vec3 ss, ts;       ///< shading tangents: (ss, ts, ns) is orthonormal
-  Vec2 uv;           ///< surface parameters
-  Vec3 wo;           ///< unit direction back along the ray
-  float t = 0;       ///< ray parameter of the hit
-  uint32_t prim = 0; ///< primitive id
+  Vec3 p;             ///< the point
+  Vec3 p_error;       ///< absolute error bound of p per axis
+  Vec3 ng;            ///< unit geometric normal (triangle winding / outward for spheres)
+  Vec3 ns;            ///< unit shading normal, on the same side as ng
+  Vec3 ss, ts;        ///< shading tangents: (ss, ts, ns) is orthonormal
+  Vec2 uv;            ///< surface parameters
+  Vec3 wo;            ///< unit direction back along the ray
+  float t = 0;        ///< ray parameter of the hit
+  uint32_t prim = 0;  ///< primitive id (of the instanced object's set when instance is set)
+  uint32_t instance = kNoInstance;  ///< the instance hit, or kNoInstance
   uint32_t shape = 0;
   const Material* material = nullptr;
   const Light* area_light = nullptr;  ///< the area light of an emissive shape, else null
-  Rgb emitted;       ///< radiance emitted towards wo (zero unless an emitter's lit side faces wo)
+  Rgb emitted;  ///< radiance emitted towards wo (zero unless an emitter's lit side faces wo)
 
   /// This point as a point of its area light (for Light::pdf_li and Light::l).
   LightPoint light_point() const { return {p, ng, prim}; }

@@ -18,35 +18,36 @@
 
 namespace penumbra {
 
-void World::check_magnitudes(const std::string& file, const ShapeDesc& sd, uint32_t first) const {
+void World::check_magnitudes(const std::string& file, const ShapeDesc& sd,
+                             const PrimitiveSet& prims, uint32_t first) const {
   // A primitive whose box is empty has a NaN or infinite coordinate, or one beyond
   // kMaxCoordinate, in world space (at either end of its motion): refused here, rather than
   // left out by every structure and silently invisible.
-  for (uint32_t id = first; id < prims_.size(); ++id) {
-    if (!prims_.prim_bounds(id).empty()) continue;
+  for (uint32_t id = first; id < prims.size(); ++id) {
+    if (!prims.prim_bounds(id).empty()) continue;
     const auto vec = [](Vec3 v) { return fmt::format("({:g}, {:g}, {:g})", v.x, v.y, v.z); };
     std::string what;
-    switch (prims_.kind(id)) {
+    switch (prims.kind(id)) {
       case PrimKind::kTriangle: {
-        const Vec3* v = prims_.triangle(id);
-        const Vec3* e = prims_.triangle_end(id);
+        const Vec3* v = prims.triangle(id);
+        const Vec3* e = prims.triangle_end(id);
         what = fmt::format("triangle {} has world-space vertices {}, {}, {}",
-                           prims_.origin(id).local, vec(v[0]), vec(v[1]), vec(v[2]));
-        if (prims_.moving(id))
+                           prims.origin(id).local, vec(v[0]), vec(v[1]), vec(v[2]));
+        if (prims.moving(id))
           what += fmt::format(" (at time 1: {}, {}, {})", vec(e[0]), vec(e[1]), vec(e[2]));
         break;
       }
       case PrimKind::kSphere: {
-        const SphereData& a = prims_.sphere(id);
-        const SphereData& b = prims_.sphere_end(id);
+        const SphereData& a = prims.sphere(id);
+        const SphereData& b = prims.sphere_end(id);
         what = fmt::format("the sphere has world-space centre {} and radius {:g}", vec(a.center),
                            a.radius);
-        if (prims_.moving(id))
+        if (prims.moving(id))
           what += fmt::format(" (at time 1: {}, {:g})", vec(b.center), b.radius);
         break;
       }
       case PrimKind::kQuad: {
-        const QuadData& q = prims_.quad(id);
+        const QuadData& q = prims.quad(id);
         what = fmt::format("the quad has world-space origin {} and edges {}, {}", vec(q.p),
                            vec(q.e1), vec(q.e2));
         break;
@@ -72,70 +73,19 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
   // Shapes to world-space primitives.
   for (size_t s = 0; s < desc.shapes.size(); ++s) {
     const ShapeDesc& sd = desc.shapes[s];
-    ShapeInfo info;
-    for (size_t m = 0; m < names.size(); ++m)
-      if (names[m] == sd.material) info.material = materials_[m].get();
-    if (!info.material)
-      throw InputError(desc.file, sd.path + "/material", "unknown material '" + sd.material + "'");
-    info.emission = sd.emission;
-    info.two_sided = sd.two_sided_emission;
-    info.flip_normal = sd.to_world.swaps_handedness();
     const auto shape = static_cast<uint32_t>(s);
     const uint32_t first = prims_.size();
-    // A moving shape (to_world_end set) goes from to_world at time 0 to to_world_end at time 1.
-    if (sd.to_world_end && sd.emission && !sd.emission->is_black())
-      throw InputError(desc.file, sd.path + "/transform_end", "a moving shape cannot be emissive");
-    const Transform& end = sd.to_world_end ? *sd.to_world_end : sd.to_world;
-    if (const auto* sphere = std::get_if<SphereData>(&sd.geometry)) {
-      const auto world_sphere = [&](const Transform& m) {
-        return SphereData{m.point(sphere->center), sphere->radius * length(m.vector({1, 0, 0}))};
-      };
-      info.flip_normal = false;  // a sphere's front is always outside
-      if (sd.to_world_end)
-        prims_.add_moving_sphere(world_sphere(sd.to_world), world_sphere(end), shape);
-      else
-        prims_.add_sphere(world_sphere(sd.to_world), shape);
-    } else if (const auto* quad = std::get_if<QuadData>(&sd.geometry)) {
-      const auto world_quad = [&](const Transform& m) {
-        return QuadData{m.point(quad->p), m.vector(quad->e1), m.vector(quad->e2)};
-      };
-      if (sd.to_world_end)
-        prims_.add_moving_quad(world_quad(sd.to_world), world_quad(end), shape);
-      else
-        prims_.add_quad(world_quad(sd.to_world), shape);
-    } else {
-      const auto& mesh = std::get<TriangleMesh>(sd.geometry);
-      if (sd.to_world_end)
-        prims_.add_moving_mesh(mesh, sd.to_world, end, shape);
-      else
-        prims_.add_mesh(mesh, sd.to_world, shape);
-      if (!mesh.normals.empty() || !mesh.uvs.empty()) {
-        TriangleMesh attrs;
-        attrs.indices = mesh.indices;
-        attrs.uvs = mesh.uvs;
-        for (const Vec3& n : mesh.normals)
-          attrs.normals.push_back(normalize(sd.to_world.normal(n)));
-        info.mesh = static_cast<int>(meshes_.size());
-        meshes_.push_back(std::move(attrs));
-        if (sd.to_world_end && !mesh.normals.empty()) {
-          // A moving mesh's shading normals at time 1 too (interpolated at the hit's time).
-          TriangleMesh ends;
-          for (const Vec3& n : mesh.normals) ends.normals.push_back(normalize(end.normal(n)));
-          info.mesh_end = static_cast<int>(meshes_.size());
-          meshes_.push_back(std::move(ends));
-        }
-      }
-    }
-    check_magnitudes(desc.file, sd, first);
+    shapes_.push_back(add_shape(desc, sd, shape, names, prims_));
     if (sd.emission && !sd.emission->is_black())
       emitters_.push_back(
           {shape, first, prims_.size() - first, *sd.emission, sd.two_sided_emission});
-    shapes_.push_back(info);
   }
-
+  // Instanced objects (their shapes numbered after the scene's) and the top level.
+  build_instances(desc, accel_spec, names);
+  bounds_ = join(prims_.bounds(), instanced_.bounds());
   // Too small a scene loses its hits to float underflow (see kMinSceneExtent).
-  const Bounds3& extent = prims_.bounds();
-  if (!extent.empty() && prims_.size() > 0) {
+  const Bounds3& extent = bounds_;
+  if (!extent.empty()) {
     const float diagonal = length(extent.diagonal());
     if (diagonal > 0.0f && diagonal < kMinSceneExtent)
       throw InputError(desc.file, "/shapes",
@@ -153,13 +103,120 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
   if (!background_.is_black())
     lights_.push_back(std::make_unique<EnvironmentLight>(RgbImage{}, background_));
   for (const auto& light : lights_) {
-    light->preprocess(prims_.bounds());
+    light->preprocess(bounds_);
     light_list_.push_back(light.get());
     if (light->kind() == LightKind::kInfinite) infinite_lights_.push_back(light.get());
   }
 
   accel_ = make_accelerator(accel_spec);
   accel_->build(prims_);
+}
+
+World::ShapeInfo World::add_shape(const SceneDesc& desc, const ShapeDesc& sd, uint32_t shape,
+                                  const std::vector<std::string>& names, PrimitiveSet& prims) {
+  ShapeInfo info;
+  for (size_t m = 0; m < names.size(); ++m)
+    if (names[m] == sd.material) info.material = materials_[m].get();
+  if (!info.material)
+    throw InputError(desc.file, sd.path + "/material", "unknown material '" + sd.material + "'");
+  info.emission = sd.emission;
+  info.two_sided = sd.two_sided_emission;
+  info.flip_normal = sd.to_world.swaps_handedness();
+  const uint32_t first = prims.size();
+  // A moving shape (to_world_end set) goes from to_world at time 0 to to_world_end at time 1.
+  if (sd.to_world_end && sd.emission && !sd.emission->is_black())
+    throw InputError(desc.file, sd.path + "/transform_end", "a moving shape cannot be emissive");
+  const Transform& end = sd.to_world_end ? *sd.to_world_end : sd.to_world;
+  if (const auto* sphere = std::get_if<SphereData>(&sd.geometry)) {
+    const auto world_sphere = [&](const Transform& m) {
+      return SphereData{m.point(sphere->center), sphere->radius * length(m.vector({1, 0, 0}))};
+    };
+    info.flip_normal = false;  // a sphere's front is always outside
+    if (sd.to_world_end)
+      prims.add_moving_sphere(world_sphere(sd.to_world), world_sphere(end), shape);
+    else
+      prims.add_sphere(world_sphere(sd.to_world), shape);
+  } else if (const auto* quad = std::get_if<QuadData>(&sd.geometry)) {
+    const auto world_quad = [&](const Transform& m) {
+      return QuadData{m.point(quad->p), m.vector(quad->e1), m.vector(quad->e2)};
+    };
+    if (sd.to_world_end)
+      prims.add_moving_quad(world_quad(sd.to_world), world_quad(end), shape);
+    else
+      prims.add_quad(world_quad(sd.to_world), shape);
+  } else {
+    const auto& mesh = std::get<TriangleMesh>(sd.geometry);
+    if (sd.to_world_end)
+      prims.add_moving_mesh(mesh, sd.to_world, end, shape);
+    else
+      prims.add_mesh(mesh, sd.to_world, shape);
+    if (!mesh.normals.empty() || !mesh.uvs.empty()) {
+      TriangleMesh attrs;
+      attrs.indices = mesh.indices;
+      attrs.uvs = mesh.uvs;
+      for (const Vec3& n : mesh.normals) attrs.normals.push_back(normalize(sd.to_world.normal(n)));
+      info.mesh = static_cast<int>(meshes_.size());
+      meshes_.push_back(std::move(attrs));
+      if (sd.to_world_end && !mesh.normals.empty()) {
+        // A moving mesh's shading normals at time 1 too (interpolated at the hit's time).
+        TriangleMesh ends;
+        for (const Vec3& n : mesh.normals) ends.normals.push_back(normalize(end.normal(n)));
+        info.mesh_end = static_cast<int>(meshes_.size());
+        meshes_.push_back(std::move(ends));
+      }
+    }
+  }
+  check_magnitudes(desc.file, sd, prims, first);
+  return info;
+}
+
+void World::build_instances(const SceneDesc& desc, const std::string& accel_spec,
+                            const std::vector<std::string>& names) {
+  if (desc.instances.empty()) return;  // objects without instances cost nothing
+  // Each object's shapes in object space, numbered after the scene's shapes, under one
+  // bottom-level structure of the scene's kind, built once.
+  std::vector<InstancedObject> objects;
+  for (const ObjectDesc& od : desc.objects) {
+    auto prims = std::make_unique<PrimitiveSet>();
+    for (const ShapeDesc& sd : od.shapes) {
+      if (sd.to_world_end)
+        throw InputError(desc.file, sd.path + "/transform_end", "shapes of an object cannot move");
+      if (sd.emission && !sd.emission->is_black())
+        throw InputError(desc.file, sd.path + "/emission",
+                         "shapes of an object cannot be emissive (area lights in instances are "
+                         "not supported)");
+      const auto shape = static_cast<uint32_t>(shapes_.size());
+      shapes_.push_back(add_shape(desc, sd, shape, names, *prims));
+    }
+    auto accel = make_accelerator(accel_spec);
+    accel->build(*prims);
+    objects.push_back({accel.get(), prims.get()});
+    object_prims_.push_back(std::move(prims));
+    object_accels_.push_back(std::move(accel));
+  }
+  std::vector<Instance> instances;
+  instances.reserve(desc.instances.size());
+  for (const InstanceDesc& id : desc.instances) {
+    if (id.object >= objects.size())
+      throw InputError(desc.file, id.path + "/object", "unknown object");
+    // The instance's world box must stay within the magnitudes traced exactly.
+    const Bounds3 b = instance_bounds(id.to_world, objects[id.object].prims->bounds());
+    const Vec3 m = max(abs(b.lo), abs(b.hi));
+    if (!b.empty() && !(std::max(m.x, std::max(m.y, m.z)) <= kMaxCoordinate))
+      throw InputError(desc.file, id.path + "/transform",
+                       fmt::format("the instance reaches a world coordinate beyond +-{:g}, the "
+                                   "largest magnitude penumbra traces exactly",
+                                   kMaxCoordinate));
+    instances.push_back({id.object, id.to_world});
+  }
+  instanced_.build(std::move(objects), std::move(instances));
+}
+
+size_t World::geometry_bytes() const {
+  size_t bytes = prims_.bytes() + accel_->stats().bytes;
+  for (const auto& p : object_prims_) bytes += p->bytes();
+  for (const auto& a : object_accels_) bytes += a->stats().bytes;
+  return bytes + instanced_.stats().bytes;
 }
 
 Rgb World::escaped(const Ray& ray) const {
@@ -197,15 +254,27 @@ namespace {
 constexpr uint64_t kTimedEvery = 17;
 }  // namespace
 
+bool World::closest_hit(const Ray& ray, Hit& hit) const {
+  const bool found = accel_->intersect(ray, hit);
+  if (!has_instances()) return found;  // one predictable branch: the single-level path as before
+  // Instances on (tmin, the scene's own closest hit): only a strictly closer one replaces it.
+  Ray rest = ray;
+  if (found) rest.tmax = hit.t;
+  Hit h;
+  if (!instanced_.intersect(rest, h)) return found;
+  hit = h;
+  return true;
+}
+
 bool World::intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const {
   Hit hit;
   bool found;
   if (++counter.rays % kTimedEvery == 0) {
     const uint64_t t0 = tick_count();
-    found = accel_->intersect(ray, hit);
+    found = closest_hit(ray, hit);
     counter.traversal_ticks += (tick_count() - t0) * kTimedEvery;
   } else {
-    found = accel_->intersect(ray, hit);
+    found = closest_hit(ray, hit);
   }
   if (!found) return false;
   interaction(ray, hit, si);
@@ -213,16 +282,58 @@ bool World::intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counte
 }
 
 bool World::occluded(const Ray& ray, RayCounter& counter) const {
-  if (++counter.rays % kTimedEvery != 0) return accel_->occluded(ray);
+  const auto blocked = [&] {
+    return accel_->occluded(ray) || (has_instances() && instanced_.occluded(ray));
+  };
+  if (++counter.rays % kTimedEvery != 0) return blocked();
   const uint64_t t0 = tick_count();
-  const bool blocked = accel_->occluded(ray);
+  const bool b = blocked();
   counter.traversal_ticks += (tick_count() - t0) * kTimedEvery;
-  return blocked;
+  return b;
 }
 
 void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) const {
+  if (hit.instance == kNoInstance) {
+    local_interaction(prims_, ray, hit, si);
+    si.instance = kNoInstance;
+    return;
+  }
+  // A hit in an instance: the interaction in object space, along the ray carried there as the
+  // top level carried it (the same t reaches the same point), then mapped to world space.
+  const Instance& inst = instanced_.instances()[hit.instance];
+  const Transform& m = inst.to_world;
+  const Transform to_object = m.inverted();
+  Ray local = ray;
+  local.o = to_object.point(ray.o);
+  local.d = to_object.vector(ray.d);
+  local_interaction(*object_prims_[inst.object], local, hit, si);
+  si.instance = hit.instance;
+  const Vec3 p = si.p, e = si.p_error;
+  si.p = m.point(p);
+  // The error of p: the object-space error carried by |M| plus the rounding of the map itself,
+  // and of the map back into object space that a ray leaving p goes through (pbrt-v3 section
+  // 3.9.5, conservatively: gamma(3) of each magnitude).
+  const auto& a = m.matrix().m;
+  const auto abs_linear = [&](Vec3 v) {
+    const auto row = [&](int i) {
+      return float(std::abs(a[i][0]) * v.x + std::abs(a[i][1]) * v.y + std::abs(a[i][2]) * v.z);
+    };
+    return Vec3(row(0), row(1), row(2));
+  };
+  si.p_error = abs_linear(e + abs(p) * gamma(3)) * (1.0f + gamma(3)) + abs(si.p) * gamma(3);
+  // Normals by the inverse transpose, which keeps them on the same side of the surface (a
+  // mirroring transform included); the shading normal faces the geometric one again.
+  const Vec3 ng = si.ng, ns = si.ns;
+  si.ng = normalize(m.normal(ng));
+  si.ns = ns == ng ? si.ng : face_forward(normalize(m.normal(ns)), si.ng);
+  si.wo = normalize(-ray.d);
+  orthonormal_basis(si.ns, si.ss, si.ts);
+}
+
+void World::local_interaction(const PrimitiveSet& prims, const Ray& ray, const Hit& hit,
+                              SurfaceInteraction& si) const {
   const uint32_t id = hit.prim;
-  const PrimOrigin& origin = prims_.origin(id);
+  const PrimOrigin& origin = prims.origin(id);
   const ShapeInfo& shape = shapes_[origin.shape];
   si.t = hit.t;
   si.prim = id;
@@ -231,13 +342,13 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
   si.wo = normalize(-ray.d);
   si.uv = {hit.u, hit.v};
   // The primitive's geometry at the ray's time (its only geometry when it is static).
-  switch (prims_.kind(id)) {
+  switch (prims.kind(id)) {
     case PrimKind::kTriangle: {
       // A static triangle's vertices are read in place: copying them through triangle_at's
       // out-parameter cost a store-to-load forwarding stall per hit.
       Vec3 moved[3];
-      const Vec3* p = prims_.triangle(id);
-      if (prims_.moving(id)) prims_.triangle_at(id, ray.time, moved), p = moved;
+      const Vec3* p = prims.triangle(id);
+      if (prims.moving(id)) prims.triangle_at(id, ray.time, moved), p = moved;
       const float b0 = 1.0f - hit.u - hit.v;
       si.p = p[0] * b0 + p[1] * hit.u + p[2] * hit.v;
       // Error of a barycentric combination (pbrt-v3 section 3.9.4).
@@ -246,7 +357,7 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
       break;
     }
     case PrimKind::kSphere: {
-      const SphereData s = prims_.sphere_at(id, ray.time);
+      const SphereData s = prims.sphere_at(id, ray.time);
       const Vec3 d = ray.at(hit.t) - s.center;
       // Reproject onto the surface; the error is then a few ulps of p (pbrt-v3 section 3.9.4).
       si.p = s.center + d * (s.radius / length(d));
@@ -258,7 +369,7 @@ void World::interaction(const Ray& ray, const Hit& hit, SurfaceInteraction& si) 
       break;
     }
     case PrimKind::kQuad: {
-      const QuadData q = prims_.quad_at(id, ray.time);
+      const QuadData q = prims.quad_at(id, ray.time);
       si.p = q.p + q.e1 * hit.u + q.e2 * hit.v;
       si.p_error = (abs(q.p) + abs(q.e1 * hit.u) + abs(q.e2 * hit.v)) * gamma(6);
       si.ng = normalize(cross(q.e1, q.e2));

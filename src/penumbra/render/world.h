@@ -1,7 +1,9 @@
 #pragma once
 /// The world a renderer traces: the scene's primitives, an acceleration structure over them, the
-/// materials and every light: the scene's point, directional and environment lights, one area
-/// light per emissive shape, and the background as a constant environment light.
+/// instanced objects (each with its own bottom-level structure of the same kind, under a top-level
+/// BVH over the instances: accel/instance_bvh.h), the materials and every light: the scene's point,
+/// directional and environment lights, one area light per emissive shape, and the background as a
+/// constant environment light.
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "penumbra/accel/accelerator.h"
+#include "penumbra/accel/instance_bvh.h"
 #include "penumbra/geometry/primitive_set.h"
 #include "penumbra/render/light/light.h"
 #include "penumbra/render/material/material.h"
@@ -41,6 +44,8 @@ class World {
   /// Builds the world of `desc` with the acceleration structure named by `accel_spec`.
   World(const SceneDesc& desc, const std::string& accel_spec);
 
+  /// Closest hit record along `ray` (scene primitives and instances); true when there is one.
+  bool closest_hit(const Ray& ray, Hit& hit) const;
   /// Closest hit along `ray`; fills `si` and returns true when there is one.
   bool intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const;
   /// True when something blocks `ray` on (tmin, tmax).
@@ -56,6 +61,13 @@ class World {
 
   const PrimitiveSet& primitives() const { return prims_; }
   const Accelerator& accelerator() const { return *accel_; }
+  /// The top level over the instances (empty when the scene has none).
+  const InstanceBvh& instances() const { return instanced_; }
+  /// True when the scene places instanced objects.
+  bool has_instances() const { return !instanced_.instances().empty(); }
+  /// Bytes of the geometry and its structures: the scene's primitives and structure, each
+  /// instanced object's primitives and bottom-level structure (once), and the top level.
+  size_t geometry_bytes() const;
   /// Every light: the scene's, then the area lights (in emitter order), then the background.
   const std::vector<const Light*>& lights() const { return light_list_; }
   /// The infinite lights (environment maps, the background), a subset of lights().
@@ -74,12 +86,9 @@ class World {
   /// The scene's background radiance (also an infinite light when not black).
   Rgb background() const { return background_; }
   /// Bounds of the scene's geometry.
-  const Bounds3& bounds() const { return prims_.bounds(); }
+  const Bounds3& bounds() const { return bounds_; }
 
  private:
-  /// Throws InputError (file, the shape's JSON path, the primitive and its coordinates) when a
-  /// primitive from `first` on has a NaN, infinite or larger than kMaxCoordinate coordinate.
-  void check_magnitudes(const std::string& file, const ShapeDesc& sd, uint32_t first) const;
   /// Per-shape data the interaction needs beyond the primitive set.
   struct ShapeInfo {
     const Material* material = nullptr;
@@ -90,9 +99,27 @@ class World {
     int mesh = -1;             ///< index into meshes_ for shading normals and uvs, or -1
     int mesh_end = -1;         ///< a moving mesh's shading normals at time 1, or -1
   };
+  /// Throws InputError (file, the shape's JSON path, the primitive and its coordinates) when a
+  /// primitive from `first` on has a NaN, infinite or larger than kMaxCoordinate coordinate.
+  void check_magnitudes(const std::string& file, const ShapeDesc& sd, const PrimitiveSet& prims,
+                        uint32_t first) const;
+  /// Adds the primitives of shape `sd` to `prims` as shape `shape` (transformed by its
+  /// to_world) and returns its ShapeInfo.
+  ShapeInfo add_shape(const SceneDesc& desc, const ShapeDesc& sd, uint32_t shape,
+                      const std::vector<std::string>& material_names, PrimitiveSet& prims);
+  /// The interaction of `hit` on `prims` along `ray`, in the space of `prims`.
+  void local_interaction(const PrimitiveSet& prims, const Ray& ray, const Hit& hit,
+                         SurfaceInteraction& si) const;
+  /// Builds the instanced objects' primitives and structures and the top level over instances.
+  void build_instances(const SceneDesc& desc, const std::string& accel_spec,
+                       const std::vector<std::string>& material_names);
 
   PrimitiveSet prims_;
   std::unique_ptr<Accelerator> accel_;
+  std::vector<std::unique_ptr<PrimitiveSet>> object_prims_;  ///< per object, object space
+  std::vector<std::unique_ptr<Accelerator>> object_accels_;  ///< per object, over object_prims_
+  InstanceBvh instanced_;
+  Bounds3 bounds_;  ///< of the primitives and every instance
   std::vector<std::unique_ptr<Material>> materials_;
   std::vector<std::unique_ptr<Light>> lights_;  ///< owned, in the order of light_list_
   std::vector<const Light*> light_list_, infinite_lights_;

@@ -172,28 +172,8 @@ bool PbrtParser::reported_directive(const PbrtToken& t) {
     pbrt_warn(warnings(), t.loc, d + ": participating media are not supported; ignored");
     return true;
   }
-  if (d == "ObjectBegin") {
-    require_world(t, true);
-    const std::string name = string_arg(t);
-    if (object_) t.loc.fail("ObjectBegin inside the definition begun at " + object_->str());
-    pbrt_warn(warnings(), t.loc,
-              "ObjectBegin \"" + name +
-                  "\": object instancing is not supported yet; its shapes are skipped");
-    stack_.push_back({gs_, false, t.loc});
-    object_ = t.loc;
-    return true;
-  }
-  if (d == "ObjectEnd") {
-    if (!object_) t.loc.fail("ObjectEnd without ObjectBegin");
-    object_.reset();
-    attribute_end(t, false);
-    return true;
-  }
-  if (d == "ObjectInstance") {
-    require_world(t, true);
-    const std::string name = string_arg(t);
-    pbrt_warn(warnings(), t.loc,
-              "ObjectInstance \"" + name + "\": object instancing is not supported yet; skipped");
+  if (d == "ObjectBegin" || d == "ObjectEnd" || d == "ObjectInstance") {
+    object_directive(t);
     return true;
   }
   if (d == "TransformTimes") {

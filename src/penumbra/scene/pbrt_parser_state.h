@@ -67,6 +67,7 @@ class PbrtParser {
   void world_begin(const PbrtToken& t);
   void attribute_end(const PbrtToken& t, bool transform_only);
   void shape(const PbrtToken& t);
+  void object_directive(const PbrtToken& t);
   void material(const PbrtToken& t);
   void make_named_material(const PbrtToken& t);
   void texture(const PbrtToken& t);
@@ -96,6 +97,15 @@ class PbrtParser {
   bool in_world_ = false;
   Transform world_from_pbrt_;      ///< the mirror x -> -x, or the identity (set at WorldBegin)
   std::optional<PbrtLoc> object_;  ///< inside ObjectBegin ... ObjectEnd
+  size_t object_index_ = 0;        ///< the object being defined (index in scene_.objects)
+  std::map<std::string, size_t> objects_;  ///< object names -> index in scene_.objects
+  /// An ObjectInstance, resolved at the end (pbrt-v4 resolves them after parsing too).
+  struct PendingInstance {
+    std::string name;
+    Transform to_world;
+    PbrtLoc loc;
+  };
+  std::vector<PendingInstance> instances_;
   std::map<std::string, size_t> materials_;    ///< name -> index in scene_.materials
   std::map<std::string, PbrtLoc> referenced_;  ///< NamedMaterial names -> first use
   std::map<std::string, nlohmann::json> material_json_;

@@ -19,10 +19,13 @@ std::string PbrtParser::default_material() {
 void PbrtParser::shape(const PbrtToken& t) {
   require_world(t, true);
   PbrtEntity e = entity(t);
-  if (object_) return;                     // instancing: reported at ObjectBegin
   if (gs_.material == kInterface) return;  // an interface material has no surface
-  PbrtShapeContext ctx{
-      world_from_pbrt_ * gs_.ctm, gs_.reverse_orientation, {sources_.back().dir, base_dir_}};
+  // In an object definition the shape is kept in the object's space, the full CTM at the
+  // shape (which includes the CTM at ObjectBegin); the instance then adds its own CTM and the
+  // world mirror, as pbrt-v4 composes them.
+  PbrtShapeContext ctx{object_ ? gs_.ctm : world_from_pbrt_ * gs_.ctm,
+                       gs_.reverse_orientation,
+                       {sources_.back().dir, base_dir_}};
   std::vector<ShapeDesc> shapes = map_pbrt_shape(e, ctx, warnings());
   e.params.report_unused(warnings(), e.what("Shape"));
   const std::string mat = gs_.material.empty() ? default_material() : gs_.material;
@@ -30,11 +33,50 @@ void PbrtParser::shape(const PbrtToken& t) {
     s.material = mat;
     s.path = e.loc.str();
     if (gs_.area_light && !gs_.area_light->radiance.is_black()) {
-      s.emission = gs_.area_light->radiance;
-      s.two_sided_emission = gs_.area_light->two_sided;
+      if (object_) {  // as pbrt-v4: a warning, and the shape is kept without its light
+        pbrt_warn(warnings(), e.loc,
+                  "area lights are not supported with object instancing; the shape is kept "
+                  "without its AreaLightSource");
+      } else {
+        s.emission = gs_.area_light->radiance;
+        s.two_sided_emission = gs_.area_light->two_sided;
+      }
     }
-    scene_.shapes.push_back(std::move(s));
+    if (object_)
+      scene_.objects[object_index_].shapes.push_back(std::move(s));
+    else
+      scene_.shapes.push_back(std::move(s));
   }
+}
+
+void PbrtParser::object_directive(const PbrtToken& t) {
+  const std::string& d = t.text;
+  if (d == "ObjectEnd") {
+    if (!object_) t.loc.fail("ObjectEnd without ObjectBegin");
+    object_.reset();
+    attribute_end(t, false);
+    return;
+  }
+  require_world(t, true);
+  const std::string name = string_arg(t);
+  if (d == "ObjectBegin") {
+    if (object_) t.loc.fail("ObjectBegin inside the definition begun at " + object_->str());
+    if (objects_.count(name))
+      t.loc.fail("ObjectBegin \"" + name + "\": the object is already defined at " +
+                 scene_.objects[objects_[name]].path);
+    stack_.push_back({gs_, false, t.loc});  // ObjectBegin implies AttributeBegin
+    object_ = t.loc;
+    object_index_ = scene_.objects.size();
+    objects_[name] = object_index_;
+    scene_.objects.push_back({name, {}, t.loc.str()});
+    return;
+  }
+  // ObjectInstance: the instance's CTM, then the world mirror; the object's own transforms are
+  // in its shapes.
+  if (object_)
+    t.loc.fail("ObjectInstance \"" + name + "\" inside the definition begun at " + object_->str() +
+               " (nested instancing is not supported)");
+  instances_.push_back({name, world_from_pbrt_ * gs_.ctm, t.loc});
 }
 
 void PbrtParser::add_material(const std::string& name, PbrtEntity e) {
@@ -118,7 +160,15 @@ void PbrtParser::finish() {
   for (const auto& [name, loc] : referenced_)
     if (!material_json_.count(name)) loc.fail("NamedMaterial: unknown material \"" + name + "\"");
   // Shapes whose named material is an interface are dropped.
-  std::erase_if(scene_.shapes, [&](const ShapeDesc& s) { return !materials_.count(s.material); });
+  const auto interface = [&](const ShapeDesc& s) { return !materials_.count(s.material); };
+  std::erase_if(scene_.shapes, interface);
+  for (ObjectDesc& o : scene_.objects) std::erase_if(o.shapes, interface);
+  // Instances by name, which may precede the definition.
+  for (const PendingInstance& p : instances_) {
+    const auto it = objects_.find(p.name);
+    if (it == objects_.end()) p.loc.fail("ObjectInstance: unknown object \"" + p.name + "\"");
+    scene_.instances.push_back({uint32_t(it->second), p.to_world, p.loc.str(), ""});
+  }
 }
 
 }  // namespace penumbra::pbrt_detail

@@ -53,6 +53,23 @@ struct ShapeDesc {
   std::string name;  ///< optional "name" from the file ("" when absent)
 };
 
+/// A named object: shapes defined once, in object space (each shape's to_world maps it into the
+/// object's space), placed any number of times by instances. Its shapes are static and not
+/// emissive (as in pbrt-v4, where area lights in instances are refused).
+struct ObjectDesc {
+  std::string name;
+  std::vector<ShapeDesc> shapes;
+  std::string path;  ///< JSON path (or FILE:LINE for pbrt), for messages
+};
+
+/// One placement of an object: the object-to-world transform of its shapes.
+struct InstanceDesc {
+  uint32_t object = 0;  ///< index into SceneDesc::objects
+  Transform to_world;
+  std::string path;  ///< JSON path, for messages
+  std::string name;  ///< optional "name" from the file ("" when absent)
+};
+
 /// Everything a scene file describes.
 struct SceneDesc {
   std::string file;         ///< the scene file, for messages
@@ -62,9 +79,16 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;
   std::vector<SceneParams> lights;  ///< type "point", ...
   std::vector<ShapeDesc> shapes;
+<<<<<<< HEAD
   /// Problems that did not stop loading ("FILE:PLACE: message"): what an importer skipped,
   /// approximated or did not read, and the warnings of mesh files (an OBJ polygon that is not
   /// planar). The CLI prints them.
+=======
+  std::vector<ObjectDesc> objects;      ///< named objects, placed by `instances`
+  std::vector<InstanceDesc> instances;  ///< placements of objects
+  /// Problems that did not stop loading ("FILE:LINE:COLUMN: message"): what an importer skipped,
+  /// approximated or did not read. The CLI prints them.
+>>>>>>> instancing
   std::vector<std::string> warnings;
 };
 

@@ -8,6 +8,7 @@
 
 #include "penumbra/scene/json_value.h"
 #include "penumbra/scene/mesh_reader.h"
+#include "penumbra/scene/object_parser.h"
 #include "penumbra/scene/pbrt_parser.h"
 #include "penumbra/scene/shape_parser.h"
 
@@ -96,7 +97,8 @@ SceneDesc parse_scene(const std::string& json_text, const std::string& file_name
   json root = parse_json(json_text, file_name);
   const JsonPlace place{file_name, ""};
   if (!root.is_object()) place.fail("expected a JSON object at the top level");
-  json_check_keys(root, place, {"description", "camera", "render", "materials", "lights", "shapes"},
+  json_check_keys(root, place,
+                  {"description", "camera", "render", "materials", "lights", "objects", "shapes"},
                   "the top level");
 
   SceneDesc scene;
@@ -114,12 +116,19 @@ SceneDesc parse_scene(const std::string& json_text, const std::string& file_name
 
   std::set<std::string> material_names;
   for (const MaterialDesc& m : scene.materials) material_names.insert(m.name);
+  if (const json* objects = json_find(root, "objects"))
+    scene.objects =
+        parse_objects(*objects, place.key("objects"), material_names, base_dir, scene.warnings);
   const JsonPlace shapes_place = place.key("shapes");
   const json& shapes = json_array(json_require(root, place, "shapes"), shapes_place);
   scene.shapes.reserve(shapes.size());
-  for (size_t i = 0; i < shapes.size(); ++i)
-    scene.shapes.push_back(
-        parse_shape(shapes[i], shapes_place.index(i), material_names, base_dir, scene.warnings));
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    if (is_instance_entry(shapes[i]))
+      scene.instances.push_back(parse_instance(shapes[i], shapes_place.index(i), scene.objects));
+    else
+      scene.shapes.push_back(
+          parse_shape(shapes[i], shapes_place.index(i), material_names, base_dir, scene.warnings));
+  }
   return scene;
 }
 

@@ -30,7 +30,7 @@ void check_shape_keys(const json& v, const JsonPlace& place, const std::string& 
     known.push_back("file");
   } else {
     place.key("type").fail("unknown shape type \"" + type +
-                           "\" (expected one of: mesh, obj, ply, quad, sphere)");
+                           "\" (expected one of: instance, mesh, obj, ply, quad, sphere)");
   }
   json_check_keys(v, place, known, "a " + type + " shape");
 }

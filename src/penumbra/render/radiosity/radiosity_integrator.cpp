@@ -42,6 +42,12 @@ std::string check_method(const std::string& name, const std::vector<std::string>
 RadiosityIntegrator::RadiosityIntegrator(const World& world, const ParamList& params,
                                          const RenderSettings&)
     : world_(world), light_sampler_(world.lights(), "power") {
+  // The patches are meshed from the scene's own primitives; instanced objects would block rays
+  // without ever receiving or sending light.
+  if (world.has_instances())
+    throw Error(
+        "radiosity: scenes with instanced objects are not supported (flatten the instances "
+        "into ordinary shapes)");
   const float diag = length(world.bounds().diagonal());
   const float scale = std::isfinite(diag) && diag > 0.0f ? diag : 1.0f;
   patch_ = float(params.get_real("patch", scale / 25.0, 1e-30, 1e30));
@@ -86,8 +92,8 @@ std::string RadiosityIntegrator::name() const {
                                          : fmt::format(",resolution={}", ff_options_.resolution);
     s += ",solver=" + solve_options_.method;
     if (adapt_rounds_ > 0)
-      s += fmt::format(",adapt={},adapt_threshold={:g},budget={}", adapt_rounds_,
-                       adapt_threshold_, budget_);
+      s += fmt::format(",adapt={},adapt_threshold={:g},budget={}", adapt_rounds_, adapt_threshold_,
+                       budget_);
   }
   s += final_gather_ ? fmt::format(",gather={}", gather_rays_) : ",final_gather=false";
   if (show_elements_) s += ",show=elements";
