@@ -79,16 +79,11 @@ struct SceneDesc {
   std::vector<MaterialDesc> materials;
   std::vector<SceneParams> lights;  ///< type "point", ...
   std::vector<ShapeDesc> shapes;
-<<<<<<< HEAD
+  std::vector<ObjectDesc> objects;      ///< named objects, placed by `instances`
+  std::vector<InstanceDesc> instances;  ///< placements of objects
   /// Problems that did not stop loading ("FILE:PLACE: message"): what an importer skipped,
   /// approximated or did not read, and the warnings of mesh files (an OBJ polygon that is not
   /// planar). The CLI prints them.
-=======
-  std::vector<ObjectDesc> objects;      ///< named objects, placed by `instances`
-  std::vector<InstanceDesc> instances;  ///< placements of objects
-  /// Problems that did not stop loading ("FILE:LINE:COLUMN: message"): what an importer skipped,
-  /// approximated or did not read. The CLI prints them.
->>>>>>> instancing
   std::vector<std::string> warnings;
 };
 
