@@ -5,18 +5,12 @@
 
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/build/prim_ref.h"
-#include "penumbra/accel/bvh_ray.h"
+#include "penumbra/accel/bvh_walk.h"
 #include "penumbra/core/timer.h"
 
 namespace penumbra {
 
 namespace {
-
-/// A deferred subtree: its node's payload (index, count) and its entry distance.
-struct StackEntry {
-  uint32_t index, count;
-  float t;
-};
 
 /// The ray in object space: the same t reaches the same point (the direction is not normalised).
 Ray to_object(const Ray& ray, const Transform& to_world, float tmax) {
@@ -80,39 +74,12 @@ void InstanceBvh::build(std::vector<InstancedObject> objects, std::vector<Instan
 
 template <bool kAnyHit>
 bool InstanceBvh::traverse(const Ray& ray, Hit& hit) const {
-  // The same front-to-back walk as Bvh::traverse; a leaf's "primitives" are instances, each
-  // tested by its bottom-level structure on the ray carried into its object space.
+  // Bvh's walk; a leaf's "primitives" are instances, each tested by its bottom-level structure
+  // on the ray carried into its object space, on (tmin, closest so far): one indirect call per
+  // instance visited.
   const PreparedRay pr(ray);
-  const BvhRay r(pr);
-  const float tmin = ray.tmin;
-  float entry;
-  if (!hit_node(nodes_[0], r, tmin, hit.t, entry)) return false;
-  StackEntry stack[kBvhStackSize];
-  int sp = 0;
-  uint32_t index = nodes_[0].index, count = nodes_[0].count;
-  bool found = false;
-  while (true) {
-    while (count == 0) {
-      const BvhNode& a = nodes_[index];
-      const BvhNode& b = nodes_[index + 1];
-      float ta, tb;
-      const bool ha = hit_node(a, r, tmin, hit.t, ta);
-      const bool hb = hit_node(b, r, tmin, hit.t, tb);
-      if (ha && hb) {
-        const bool b_first = tb < ta;
-        const BvhNode& first = b_first ? b : a;
-        const BvhNode& second = b_first ? a : b;
-        stack[sp++] = {second.index, second.count, b_first ? ta : tb};
-        index = first.index, count = first.count;
-      } else if (ha || hb) {
-        const BvhNode& only = ha ? a : b;
-        index = only.index, count = only.count;
-      } else {
-        goto pop;
-      }
-    }
-    // Leaf: each instance's bottom level on (tmin, closest so far); one indirect call per
-    // instance visited.
+  return walk_bvh<kAnyHit>(nodes_, BvhRay(pr), ray.tmin, hit, [&](uint32_t index, uint32_t count) {
+    bool found = false;
     for (uint32_t k = index; k < index + count; ++k) {
       const uint32_t id = leaf_ids_[k];
       const Instance& inst = instances_[id];
@@ -129,13 +96,8 @@ bool InstanceBvh::traverse(const Ray& ray, Hit& hit) const {
         }
       }
     }
-  pop:
-    do {
-      if (sp == 0) return found;
-      --sp;
-    } while (stack[sp].t > hit.t);
-    index = stack[sp].index, count = stack[sp].count;
-  }
+    return found;
+  });
 }
 
 bool InstanceBvh::intersect(const Ray& ray, Hit& hit) const {
