@@ -62,9 +62,9 @@ TEST(TextureParams, ColoursAndTextureObjects) {
 
 TEST(TextureParams, ErrorsNameTheJsonPath) {
   const std::string at = "scene.json:/materials/floor/albedo";
-  EXPECT_EQ(
-      error_of(R"({"type": "zoneplate", "k": 1})"),
-      at + "/type: unknown texture type 'zoneplate' (valid: constant, checkerboard, zone_plate)");
+  EXPECT_EQ(error_of(R"({"type": "zoneplate", "k": 1})"),
+            at + "/type: unknown texture type 'zoneplate' (valid: constant, checkerboard, "
+                 "zone_plate, image)");
   EXPECT_EQ(error_of(R"({"k": 1})"), at + ": missing required key \"type\"");
   EXPECT_EQ(error_of(R"({"type": "zone_plate"})"), at + ": missing required key \"k\"");
   EXPECT_EQ(error_of(R"({"type": "checkerboard"})"), at + ": missing required key \"scale\"");
@@ -118,7 +118,7 @@ TEST(TextureParams, SceneFilesReportTextureErrors) {
       "test.json:/materials/plate/albedo/colors/1: must lie in [0, 1]");
   EXPECT_EQ(world_error(R"("type": "mirror", "reflectance": {"type": "checker", "scale": 2})"),
             "test.json:/materials/plate/reflectance/type: unknown texture type 'checker' (valid: "
-            "constant, checkerboard, zone_plate)");
+            "constant, checkerboard, zone_plate, image)");
   EXPECT_EQ(world_error(R"("type": "mirror", "reflectance": {"type": "checkerboard", "scale": 2})"),
             "no error");
 }

@@ -1,8 +1,12 @@
 #include "penumbra/scene/pbrt_lights.h"
 
+#include <cmath>
+#include <filesystem>
 #include <numbers>
 
+#include "penumbra/scene/pbrt_shapes.h"
 #include "penumbra/scene/pbrt_spectra.h"
+#include "penumbra/scene/transform_parser.h"
 
 namespace penumbra {
 
@@ -41,9 +45,26 @@ Rgb photometric(const PbrtEntity& e, Rgb c, const char* param, double per_unit) 
   return c * float(target / (per_unit * y));
 }
 
+// The rotation (or mirrored rotation) of `to_world` as 16 row-major numbers: translation dropped,
+// a uniform scale divided out; anything else is refused at the light.
+json rotation_json(const PbrtEntity& e, const Transform& to_world) {
+  const auto& m = to_world.matrix().m;
+  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                     m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  const double s = std::cbrt(std::fabs(det));
+  if (!(s > 0) || !is_similarity(to_world))
+    e.loc.fail("infinite light with a map: its transform must be a rotation (it scales or shears)");
+  json a = json::array();
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) a.push_back(r < 3 && c < 3 ? m[r][c] / s : (r == c ? 1.0 : 0.0));
+  return a;
+}
+
 }  // namespace
 
 std::optional<json> map_pbrt_light(const PbrtEntity& e, const Transform& to_world,
+                                   const std::vector<std::string>& search_dirs,
                                    std::vector<std::string>& warnings) {
   const std::string& t = e.type;
   if (t == "point") {
@@ -64,20 +85,26 @@ std::optional<json> map_pbrt_light(const PbrtEntity& e, const Transform& to_worl
   if (t == "infinite") {
     const std::string file = e.params.get_string("filename", "");
     e.params.find("portal", "point3");
-    Rgb l;
-    if (!file.empty()) {
-      l = Rgb(float(e.params.get_float("scale", 1.0)));
-      if (e.params.has("L")) e.loc.fail("infinite light: give either \"L\" or \"filename\"");
-      pbrt_warn(warnings, e.loc,
-                "infinite light map \"" + file +
-                    "\" not read (pbrt-v4 maps use the equal-area octahedral layout, penumbra's "
-                    "environment light reads equirectangular maps); a constant environment of "
-                    "radiance \"scale\" is used instead");
-    } else {
+    if (file.empty()) {
       // Illuminance E of an upward surface under a constant sky of radiance L: E = pi L.
-      l = photometric(e, emitted(e, "L", warnings), "illuminance", std::numbers::pi);
+      const Rgb l = photometric(e, emitted(e, "L", warnings), "illuminance", std::numbers::pi);
+      return json{{"type", "environment"}, {"radiance", rgb_json(l)}};
     }
-    return json{{"type", "environment"}, {"radiance", rgb_json(l)}};
+    if (e.params.has("L")) e.loc.fail("infinite light: give either \"L\" or \"filename\"");
+    if (e.params.find("illuminance", "float"))
+      pbrt_warn(warnings, e.loc,
+                "infinite light \"illuminance\" with an image is not supported; \"scale\" is used");
+    // pbrt-v4's image maps are equal-area octahedral squares in the light's frame (+z at the
+    // centre); the light's rotation (with the world mirror) becomes the map-to-world transform.
+    const std::string path = pbrt_resolve(file, search_dirs);
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec))
+      e.loc.fail("infinite light map not found: " + path);
+    return json{{"type", "environment"},
+                {"radiance", rgb_json(Rgb(float(e.params.get_float("scale", 1.0))))},
+                {"map", path},
+                {"mapping", "octahedral"},
+                {"transform", json::array({json{{"matrix", rotation_json(e, to_world)}}})}};
   }
   if (t == "spot" || t == "goniometric" || t == "projection") {
     pbrt_warn(warnings, e.loc, "LightSource \"" + t + "\" is not supported by penumbra; skipped");

@@ -19,10 +19,11 @@ struct PbrtAreaLight {
 };
 
 /// The light record (a JSON object with "type") of a LightSource: point, distant, infinite with
-/// a constant radiance (a map is reported and replaced by its scale as a constant); spot,
-/// goniometric and projection are reported and skipped (nullopt). `to_world` is the CTM in
-/// penumbra's world.
+/// a constant radiance or an equal-area octahedral map (its "filename" resolved in
+/// `search_dirs`); spot, goniometric and projection are reported and skipped (nullopt).
+/// `to_world` is the CTM in penumbra's world.
 std::optional<nlohmann::json> map_pbrt_light(const PbrtEntity& light, const Transform& to_world,
+                                             const std::vector<std::string>& search_dirs,
                                              std::vector<std::string>& warnings);
 
 /// The emission of an `AreaLightSource "diffuse"` (other types are InputErrors).

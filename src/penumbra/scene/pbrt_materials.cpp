@@ -1,8 +1,11 @@
 #include "penumbra/scene/pbrt_materials.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <filesystem>
 
+#include "penumbra/scene/pbrt_shapes.h"
 #include "penumbra/scene/pbrt_spectra.h"
 
 namespace penumbra {
@@ -131,6 +134,54 @@ json dielectric(const PbrtEntity& e, const PbrtTextures& tex, std::vector<std::s
   return {{"type", "rough_dielectric"}, {"ior", ior}, {"roughness", r}};
 }
 
+// A spectrum `imagemap` as penumbra's image texture (uv mapping, bilinear), or null (with a
+// warning) for an image format penumbra does not read.
+json image_map(const PbrtEntity& e, const std::vector<std::string>& search_dirs,
+               std::vector<std::string>& warnings) {
+  const std::string name = e.params.get_string("filename", "");
+  if (name.empty()) e.loc.fail("Texture \"imagemap\" needs \"string filename\"");
+  const std::string path = pbrt_resolve(name, search_dirs);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) e.loc.fail("image not found: " + path);
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".png" && ext != ".exr" && ext != ".pfm") {
+    pbrt_warn(
+        warnings, e.loc,
+        "imagemap \"" + name + "\": penumbra reads PNG, EXR and PFM images; mid grey is used");
+    for (const PbrtParam& p : e.params.all()) p.used = true;
+    return nullptr;
+  }
+  if (e.params.get_string("mapping", "uv") != "uv")
+    pbrt_warn(warnings, e.loc, "only the uv mapping is supported; uv is used");
+  const std::string filter = e.params.get_string("filter", "bilinear");
+  if (filter != "bilinear")
+    pbrt_warn(warnings, e.loc, "imagemap filter \"" + filter + "\" is read as bilinear");
+  const std::string encoding = e.params.get_string("encoding", ext == ".png" ? "sRGB" : "linear");
+  if ((ext == ".png") != (encoding == "sRGB"))
+    pbrt_warn(warnings, e.loc,
+              "imagemap encoding \"" + encoding +
+                  "\" is not supported: PNG is decoded as sRGB, EXR and PFM as linear");
+  if (e.params.get_bool("invert", false))
+    pbrt_warn(warnings, e.loc, "imagemap \"invert\" is not supported; ignored");
+  if (e.params.get_float("scale", 1.0) != 1.0)
+    pbrt_warn(warnings, e.loc, "imagemap \"scale\" is not supported; ignored");
+  std::string wrap = e.params.get_string("wrap", "repeat");
+  if (wrap == "octahedralsphere") {
+    pbrt_warn(warnings, e.loc, "imagemap wrap \"octahedralsphere\" is read as \"repeat\"");
+    wrap = "repeat";
+  } else if (wrap != "repeat" && wrap != "clamp" && wrap != "black") {
+    e.loc.fail("unknown imagemap wrap \"" + wrap +
+               "\" (pbrt-v4 has: repeat, black, clamp, octahedralsphere)");
+  }
+  const double su = e.params.get_float("uscale", 1), sv = e.params.get_float("vscale", 1);
+  const double du = e.params.get_float("udelta", 0), dv = e.params.get_float("vdelta", 0);
+  if (!(su != 0 && sv != 0 && std::isfinite(su) && std::isfinite(sv)))
+    e.loc.fail("imagemap uscale and vscale must be finite and non-zero");
+  return json{
+      {"type", "image"}, {"file", path}, {"scale", {su, sv}}, {"offset", {du, dv}}, {"wrap", wrap}};
+}
+
 void mark_used(const PbrtEntity& e, std::initializer_list<const char*> names) {
   for (const PbrtParam& p : e.params.all())
     for (const char* n : names)
@@ -140,7 +191,9 @@ void mark_used(const PbrtEntity& e, std::initializer_list<const char*> names) {
 }  // namespace
 
 PbrtTexture map_pbrt_texture(const std::string& value_type, const PbrtEntity& e,
-                             const PbrtTextures& textures, std::vector<std::string>& warnings) {
+                             const PbrtTextures& textures,
+                             const std::vector<std::string>& search_dirs,
+                             std::vector<std::string>& warnings) {
   PbrtTexture t;
   t.is_float = value_type == "float";
   const json grey = t.is_float ? json(0.5) : json::array({0.5, 0.5, 0.5});
@@ -166,6 +219,9 @@ PbrtTexture map_pbrt_texture(const std::string& value_type, const PbrtEntity& e,
       pbrt_warn(warnings, e.loc, "a float checkerboard is used as its mean value");
       t.value = 0.5 * (t.value["colors"][0].get<double>() + t.value["colors"][1].get<double>());
     }
+  } else if (e.type == "imagemap" && !t.is_float) {
+    t.value = image_map(e, search_dirs, warnings);
+    if (t.value.is_null()) t.value = grey;
   } else if (e.type == "scale") {
     const json v = value("tex", 1.0);
     const double s = float_param(e, "scale", 1, textures, warnings);

@@ -19,10 +19,13 @@ struct PbrtTexture {
 };
 using PbrtTextures = std::map<std::string, PbrtTexture>;
 
-/// The texture of a `Texture "name" "spectrum|float" "class" ...` directive: constant and
-/// checkerboard (uv mapping) are mapped; other classes are reported and stand for a mid grey.
+/// The texture of a `Texture "name" "spectrum|float" "class" ...` directive: constant,
+/// checkerboard (uv mapping), scale of constants and spectrum imagemap (its file resolved in
+/// `search_dirs`) are mapped; other classes are reported and stand for a mid grey.
 PbrtTexture map_pbrt_texture(const std::string& value_type, const PbrtEntity& texture,
-                             const PbrtTextures& textures, std::vector<std::string>& warnings);
+                             const PbrtTextures& textures,
+                             const std::vector<std::string>& search_dirs,
+                             std::vector<std::string>& warnings);
 
 /// The penumbra material (a JSON object with "type") for a pbrt material of `material.type`:
 /// diffuse, conductor, dielectric and rough dielectric exactly; thindielectric, coateddiffuse,

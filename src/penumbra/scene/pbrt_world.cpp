@@ -134,14 +134,16 @@ void PbrtParser::texture(const PbrtToken& t) {
   PbrtEntity e = entity(t);
   if (textures_.count(name))
     pbrt_warn(warnings(), t.loc, "texture \"" + name + "\" redefined; the new one is used");
-  textures_[name] = map_pbrt_texture(value_type, e, textures_, warnings());
+  textures_[name] =
+      map_pbrt_texture(value_type, e, textures_, {sources_.back().dir, base_dir_}, warnings());
   e.params.report_unused(warnings(), e.what("Texture"));
 }
 
 void PbrtParser::light(const PbrtToken& t) {
   require_world(t, true);
   PbrtEntity e = entity(t);
-  std::optional<nlohmann::json> l = map_pbrt_light(e, world_from_pbrt_ * gs_.ctm, warnings());
+  std::optional<nlohmann::json> l =
+      map_pbrt_light(e, world_from_pbrt_ * gs_.ctm, {sources_.back().dir, base_dir_}, warnings());
   e.params.report_unused(warnings(), e.what("LightSource"));
   if (l) {
     scene_.lights.emplace_back(*l, e.loc.str(), "");

@@ -59,12 +59,31 @@ RenderSettings parse_render(const json& v, const JsonPlace& place) {
 
 // Materials: an object from names to {"type": ..., parameters}. Duplicate names are duplicate
 // keys, which parse_json already rejects.
-std::vector<MaterialDesc> parse_materials(json& v, const JsonPlace& place) {
+// The "file" of every image texture inside a material (a value {"type": "image", "file": ...} at
+// any depth), resolved relative to `base_dir` unless absolute.
+void resolve_texture_files(json& v, const std::string& base_dir, int depth = 0) {
+  if (depth > 64 || base_dir.empty()) return;
+  if (v.is_object()) {
+    const auto type = v.find("type"), file = v.find("file");
+    if (type != v.end() && *type == "image" && file != v.end() && file->is_string()) {
+      const std::filesystem::path f(file->get<std::string>());
+      if (!f.empty() && f.is_relative())
+        *file = (std::filesystem::path(base_dir) / f).lexically_normal().string();
+    }
+    for (auto& [key, child] : v.items()) resolve_texture_files(child, base_dir, depth + 1);
+  } else if (v.is_array()) {
+    for (auto& child : v) resolve_texture_files(child, base_dir, depth + 1);
+  }
+}
+
+std::vector<MaterialDesc> parse_materials(json& v, const JsonPlace& place,
+                                          const std::string& base_dir) {
   if (!v.is_object()) place.fail("expected an object mapping material names to materials");
   std::vector<MaterialDesc> out;
   for (auto& [name, params] : v.items()) {
     const JsonPlace at = place.key(name);
     if (name.empty()) at.fail("material name must not be empty");
+    resolve_texture_files(params, base_dir);
     out.push_back({name, SceneParams(std::move(params), at.file, at.path)});
   }
   return out;
@@ -110,7 +129,7 @@ SceneDesc parse_scene(const std::string& json_text, const std::string& file_name
   if (const json* r = json_find(root, "render"))
     scene.render = parse_render(*r, place.key("render"));
   if (json_find(root, "materials"))
-    scene.materials = parse_materials(root["materials"], place.key("materials"));
+    scene.materials = parse_materials(root["materials"], place.key("materials"), base_dir);
   if (json_find(root, "lights"))
     scene.lights = parse_lights(root["lights"], place.key("lights"), base_dir);
 

@@ -10,6 +10,7 @@
 #include "penumbra/core/error.h"
 #include "penumbra/image/image_io.h"
 #include "penumbra/render/sampling.h"
+#include "penumbra/render/sampling/equal_area.h"
 #include "penumbra/scene/json_value.h"
 #include "penumbra/scene/transform_parser.h"
 
@@ -71,8 +72,13 @@ Transform read_rotation(const SceneParams& params) {
 
 }  // namespace
 
-EnvironmentLight::EnvironmentLight(RgbImage map, Rgb scale, const Transform& to_world)
-    : map_(std::move(map)), scale_(scale), to_world_(to_world), to_map_(to_world.inverted()) {
+EnvironmentLight::EnvironmentLight(RgbImage map, Rgb scale, const Transform& to_world,
+                                   bool octahedral)
+    : map_(std::move(map)),
+      scale_(scale),
+      to_world_(to_world),
+      to_map_(to_world.inverted()),
+      octahedral_(octahedral) {
   build();
 }
 
@@ -82,6 +88,15 @@ EnvironmentLight::EnvironmentLight(const SceneParams& params) {
     if (!(scale_[c] >= 0.0f && std::isfinite(scale_[c])))
       params.fail("radiance", "must be finite and non-negative");
   map_ = read_map(params);
+  const std::string mapping = params.get_string("mapping", "equirectangular");
+  if (mapping == "octahedral")
+    octahedral_ = true;
+  else if (mapping != "equirectangular")
+    params.fail("mapping",
+                "unknown mapping \"" + mapping + "\" (valid: equirectangular, octahedral)");
+  if (octahedral_ && !map_.empty() && map_.width() != map_.height())
+    params.fail("map", "an octahedral map must be square, got " + std::to_string(map_.width()) +
+                           " x " + std::to_string(map_.height()));
   to_world_ = read_rotation(params);
   to_map_ = to_world_.inverted();
   params.check_all_used();
@@ -95,6 +110,12 @@ void EnvironmentLight::build() {
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
       for (int k = 0; k < 3; ++k) map_.at(i, j)[k] = std::fmax(map_.at(i, j)[k], 0.0f);
+  if (octahedral_) {
+    std::vector<float> weights;
+    build_octahedral(weights);
+    distribution_ = Distribution2D(weights, w, h);
+    return;
+  }
 
   // Row boundaries in cos(theta), from the zenith (+1) down to the nadir (-1).
   row_z_.resize(h + 1);
@@ -140,12 +161,42 @@ void EnvironmentLight::build() {
   distribution_ = Distribution2D(weights, w, h);
 }
 
+void EnvironmentLight::build_octahedral(std::vector<float>& weights) {
+  // Every pixel covers the solid angle 4 pi / (W H); the integral of the bilinear interpolant
+  // over a pixel weighs its neighbours (across the folded edges) 1/8, 3/4, 1/8 along each axis.
+  const int w = map_.width(), h = map_.height();
+  const double solid_angle = 4.0 * kPiD / (double(w) * h);
+  constexpr double kTap[3] = {0.125, 0.75, 0.125};
+  weights.assign(static_cast<size_t>(w) * h, 0.0f);
+  double sum[3] = {0, 0, 0};
+  for (int j = 0; j < h; ++j)
+    for (int i = 0; i < w; ++i) {
+      double e[3] = {0, 0, 0};
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) {
+          const Rgb px = texel(i + b - 1, j + a - 1);
+          const double weight = solid_angle * kTap[a] * kTap[b];
+          for (int k = 0; k < 3; ++k) e[k] += weight * scale_[k] * px[k];
+        }
+      weights[static_cast<size_t>(j) * w + i] =
+          static_cast<float>(Rgb(float(e[0]), float(e[1]), float(e[2])).luminance());
+      for (int k = 0; k < 3; ++k) sum[k] += e[k];
+    }
+  integral_ = Rgb(float(sum[0]), float(sum[1]), float(sum[2]));
+}
+
+Rgb EnvironmentLight::texel(int x, int y) const {
+  equal_area_wrap(x, y, map_.width(), map_.height());
+  return map_.at(x, y);
+}
+
 void EnvironmentLight::preprocess(const Bounds3& b) {
   bounding_sphere(b, center_, radius_);
   radius_ = std::fmax(radius_, 1e-3f);  // an empty scene still gets a finite disc
 }
 
 Vec2 EnvironmentLight::uv_of(Vec3 w) const {
+  if (octahedral_) return equal_area_sphere_to_square(w);
   return {0.5f + std::atan2(w.x, -w.z) * (0.5f / kPi),
           std::acos(std::clamp(w.y, -1.0f, 1.0f)) / kPi};
 }
@@ -163,6 +214,13 @@ Rgb EnvironmentLight::lookup(Vec2 uv) const {
   const float x = uv.x * w - 0.5f, y = uv.y * h - 0.5f;
   const float fx = std::floor(x), fy = std::floor(y);
   const float tx = x - fx, ty = y - fy;
+  if (octahedral_) {  // neighbours across the folded edges
+    const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
+    const Rgb p00 = texel(ix, iy), p10 = texel(ix + 1, iy);
+    const Rgb p01 = texel(ix, iy + 1), p11 = texel(ix + 1, iy + 1);
+    const Rgb top = p00 + (p10 - p00) * tx, bottom = p01 + (p11 - p01) * tx;
+    return scale_ * (top + (bottom - top) * ty);
+  }
   const int x0 = (static_cast<int>(fx) % w + w) % w, x1 = x0 + 1 == w ? 0 : x0 + 1;
   const int y0 = std::clamp(static_cast<int>(fy), 0, h - 1);
   const int y1 = std::clamp(static_cast<int>(fy) + 1, 0, h - 1);
@@ -172,6 +230,8 @@ Rgb EnvironmentLight::lookup(Vec2 uv) const {
 }
 
 Vec3 EnvironmentLight::direction_of(const Sample2D& s) const {
+  // Equal area: uniform in the square within the pixel is uniform in solid angle.
+  if (octahedral_) return normalize(to_world_.vector(equal_area_square_to_sphere(s.p)));
   // Uniform in cos(theta) within the row (so uniform in solid angle within the pixel).
   const float t = std::clamp(s.p.y * map_.height() - s.y, 0.0f, 1.0f);
   const double z = row_z_[s.y] + t * (row_z_[s.y + 1] - row_z_[s.y]);
@@ -182,6 +242,7 @@ Vec3 EnvironmentLight::direction_of(const Sample2D& s) const {
 }
 
 float EnvironmentLight::pdf_of(Pixel px) const {
+  if (octahedral_) return distribution_.cell_pdf(px.x, px.y) * (0.25f / kPi);
   return distribution_.cell_pdf(px.x, px.y) * row_factor_[px.y];
 }
 

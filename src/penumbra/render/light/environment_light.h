@@ -18,8 +18,12 @@ namespace penumbra {
 /// - map: optional path of an equirectangular .exr or .pfm image (relative paths are resolved
 ///   against the scene file's folder by the scene loader). Without it the map is constant 1 and
 ///   the light is a constant environment (the scene's background is one): le and pdf_li then
-///   return the radiance and 1 / (4 pi) without a lookup. Negative pixel values are read as 0; NaN or infinite
-///   pixels are an error.
+///   return the radiance and 1 / (4 pi) without a lookup. Negative pixel values are read as 0; NaN
+///   or infinite pixels are an error.
+/// - mapping: the layout of the map, "equirectangular" (default; below) or "octahedral": pbrt-v4's
+///   equal-area octahedral square (render/sampling/equal_area.h; Clarberg 2008), whose centre
+///   pixel looks along the map frame's +z and whose four corners along -z. An octahedral map
+///   must be square.
 /// - transform: optional map-to-world rotation, in the syntax of shapes' "transform" (for example
 ///   [{"rotate": {"axis": [0, 1, 0], "angle": 90}}]); only rotations (and mirrorings) are
 ///   accepted: no scale, shear or translation.
@@ -45,6 +49,10 @@ namespace penumbra {
 /// reaches a non-black pixel gets a positive weight; luminance is positive for every non-black
 /// non-negative colour).
 ///
+/// An octahedral map is looked up bilinearly with its edges folded as the mapping folds them
+/// (pbrt-v4's octahedral wrap) and sampled the same way over its pixels, each of solid angle
+/// 4 pi / (W H): pdf = P(pixel) W H / (4 pi), and the direction is uniform within the pixel.
+///
 /// Emitted rays (sample_le) take a direction from the map and an origin on the disc of the
 /// scene's bounding-sphere radius r facing it, pdf_pos = 1 / (pi r^2); power() = pi r^2 times
 /// the integral of Le over the sphere.
@@ -52,7 +60,8 @@ class EnvironmentLight final : public Light {
  public:
   /// A light of radiance `scale` * `map` (an empty map is constant 1) with the map-to-world
   /// rotation `to_world` (must be orthogonal; not checked here).
-  EnvironmentLight(RgbImage map, Rgb scale, const Transform& to_world = {});
+  EnvironmentLight(RgbImage map, Rgb scale, const Transform& to_world = {},
+                   bool octahedral = false);
   /// From scene parameters; throws InputError naming the file, JSON path and problem.
   explicit EnvironmentLight(const SceneParams& params);
 
@@ -67,6 +76,8 @@ class EnvironmentLight final : public Light {
 
   /// The map (1 x 1 of value 1 for a constant environment), without the radiance scale.
   const RgbImage& map() const { return map_; }
+  /// True for a map in the equal-area octahedral layout.
+  bool octahedral() const { return octahedral_; }
   /// Integral of Le over the sphere of directions (W sr^-1 m^-2 integrated over solid angle).
   Rgb integral() const { return integral_; }
 
@@ -76,6 +87,10 @@ class EnvironmentLight final : public Light {
     int x = 0, y = 0;
   };
   void build();
+  /// The per-pixel sampling weights and integral of an octahedral map.
+  void build_octahedral(std::vector<float>& weights);
+  /// The pixel (x, y) of the map, where x and y may lie one pixel outside it.
+  Rgb texel(int x, int y) const;
   /// Map coordinates (u, v) in [0, 1]^2 of the unit map-frame direction w.
   Vec2 uv_of(Vec3 w) const;
   /// The pixel that contains map point uv.
@@ -97,7 +112,8 @@ class EnvironmentLight final : public Light {
   std::vector<float> row_factor_;  ///< per row: 1 / (2 pi H (z_j - z_j+1)), to turn a density on
                                    ///< [0, 1)^2 into one per solid angle
   Rgb integral_;
-  bool constant_ = false;  ///< a 1 x 1 map: the same radiance from every direction
+  bool octahedral_ = false;  ///< the map's layout: equal-area octahedral, else equirectangular
+  bool constant_ = false;    ///< a 1 x 1 map: the same radiance from every direction
   Vec3 center_;
   float radius_ = 1;
 };

@@ -2,9 +2,11 @@
 /// Textures: colours that vary over a surface, evaluated at a surface interaction. A closed set of
 /// kinds behind one `switch` (no virtual call per lookup), small enough to copy by value.
 #include <cstdint>
+#include <memory>
 
 #include "penumbra/core/color.h"
 #include "penumbra/core/vec.h"
+#include "penumbra/image/image.h"
 
 namespace penumbra {
 
@@ -19,11 +21,13 @@ struct TextureQuery {
 };
 
 /// An RGB texture: constant, 2D checkerboard over uv, 3D (solid) checkerboard over world position,
-/// or a Fresnel zone plate over uv.
+/// a Fresnel zone plate over uv, or an image over uv (shared, not copied, between copies).
 class Texture {
  public:
   /// The kinds of texture.
-  enum class Kind : uint8_t { kConstant, kCheckerboard, kCheckerboard3d, kZonePlate };
+  enum class Kind : uint8_t { kConstant, kCheckerboard, kCheckerboard3d, kZonePlate, kImage };
+  /// What an image texture shows outside [0, 1)^2.
+  enum class Wrap : uint8_t { kRepeat, kClamp, kBlack };
 
   /// A constant colour.
   static Texture constant(Rgb c);
@@ -36,6 +40,12 @@ class Texture {
   /// The Fresnel zone plate c0 + (c1 - c0) (1 + cos(k r^2)) / 2, r = |uv - center|: the local
   /// frequency k r / pi (cycles per unit of uv) rises linearly with r.
   static Texture zone_plate(float k, Vec2 center, Rgb c0, Rgb c1);
+
+  /// The image over uv, as pbrt-v4's image textures: (s, t) = (u su + du, v sv + dv) and the
+  /// image spans [0, 1]^2 with t = 0 at its bottom row and t = 1 at its top; pixel (x, y) is
+  /// centred on s = (x + 0.5) / W, t = 1 - (y + 0.5) / H; lookups are bilinear between pixel
+  /// centres, with `wrap` outside the image. `image` must not be empty.
+  static Texture image(std::shared_ptr<const RgbImage> image, Vec2 scale, Vec2 offset, Wrap wrap);
 
   /// The kind.
   Kind kind() const { return kind_; }
@@ -51,10 +61,15 @@ class Texture {
 
  private:
   Kind kind_ = Kind::kConstant;
-  Rgb c0_, c1_;  ///< constant colour / even / dark colour, and odd / bright colour
-  Vec3 scale_;   ///< checkerboard frequencies per axis
-  Vec2 center_;  ///< zone plate centre in uv
-  float k_ = 0;  ///< zone plate chirp rate
+  Rgb c0_, c1_;                ///< constant colour / even / dark colour, and odd / bright colour
+  Vec3 scale_;                 ///< checkerboard frequencies per axis
+  Vec2 center_;                ///< zone plate centre in uv; image texture offset (du, dv)
+  float k_ = 0;                ///< zone plate chirp rate
+  Wrap wrap_ = Wrap::kRepeat;  ///< image texture wrap mode
+  std::shared_ptr<const RgbImage> image_;  ///< image texture pixels (linear RGB)
+
+  /// Image texel (x, y), wrapped.
+  Rgb texel(int x, int y) const;
 };
 
 }  // namespace penumbra

@@ -2,9 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <mutex>
 
 #include <fmt/format.h>
 
+#include "penumbra/image/image_io.h"
 #include "penumbra/scene/json_value.h"
 
 namespace penumbra {
@@ -35,6 +40,41 @@ void read_colors(const SceneParams& tex, float lo, float hi, Rgb& c0, Rgb& c1) {
   if (a.size() != 2) place.fail(fmt::format("expected an array of 2 colours, got {}", a.size()));
   c0 = checked(json_rgb(a[0], place.index(0)), place.index(0), lo, hi);
   c1 = checked(json_rgb(a[1], place.index(1)), place.index(1), lo, hi);
+}
+
+/// The image at `path`, read once per process while any texture holds it (materials sharing a
+/// file share its pixels), every pixel checked to lie in [lo, hi].
+std::shared_ptr<const RgbImage> texture_image(const SceneParams& tex, const std::string& path,
+                                              float lo, float hi) {
+  static std::mutex mutex;
+  static std::map<std::string, std::weak_ptr<const RgbImage>> cache;
+  std::shared_ptr<const RgbImage> image;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    image = cache[path].lock();
+  }
+  if (!image) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) tex.fail("file", "image not found: " + path);
+    try {
+      image = std::make_shared<const RgbImage>(read_image(path));
+    } catch (const Error& e) {
+      tex.fail("file", std::string("cannot read the texture: ") + e.what());
+    }
+    if (image->empty()) tex.fail("file", "the image has no pixels: " + path);
+    const std::lock_guard<std::mutex> lock(mutex);
+    cache[path] = image;
+  }
+  for (int y = 0; y < image->height(); ++y)
+    for (int x = 0; x < image->width(); ++x)
+      for (int c = 0; c < 3; ++c) {
+        const float v = image->at(x, y)[c];
+        if (!(v >= lo && v <= hi))
+          tex.fail("file", fmt::format("{}: pixel ({}, {}) is {}; a texture here must lie in "
+                                       "[{}, {}]",
+                                       path, x, y, v, lo, hi));
+      }
+  return image;
 }
 
 /// The texture described by the object `tex`.
@@ -70,6 +110,28 @@ Texture parse_texture(const SceneParams& tex, float lo, float hi) {
     const Vec2 center = c ? json_vec2(*c, here.key("center")) : Vec2(0.5f, 0.5f);
     read_colors(tex, lo, hi, c0, c1);
     t = Texture::zone_plate(k, center, c0, c1);
+  } else if (tex.type() == "image") {
+    const std::string path = tex.get_string("file", "");
+    if (path.empty()) here.fail("missing required key \"file\"");
+    Vec2 scale(1.0f, 1.0f), offset(0.0f, 0.0f);
+    if (const nlohmann::json* v = tex.get_json("scale"))
+      scale = v->is_array()
+                  ? json_vec2(*v, here.key("scale"))
+                  : Vec2(json_float(*v, here.key("scale")), json_float(*v, here.key("scale")));
+    if (!std::isfinite(scale.x) || !std::isfinite(scale.y) || scale.x == 0 || scale.y == 0)
+      tex.fail("scale", "must be finite and non-zero");
+    if (const nlohmann::json* v = tex.get_json("offset"))
+      offset = json_vec2(*v, here.key("offset"));
+    if (!std::isfinite(offset.x) || !std::isfinite(offset.y)) tex.fail("offset", "must be finite");
+    const std::string wrap = tex.get_string("wrap", "repeat");
+    Texture::Wrap mode = Texture::Wrap::kRepeat;
+    if (wrap == "clamp")
+      mode = Texture::Wrap::kClamp;
+    else if (wrap == "black")
+      mode = Texture::Wrap::kBlack;
+    else if (wrap != "repeat")
+      tex.fail("wrap", "unknown wrap '" + wrap + "' (valid: repeat, clamp, black)");
+    t = Texture::image(texture_image(tex, path, lo, hi), scale, offset, mode);
   } else {
     tex.fail("type", "unknown texture type '" + tex.type() + "' (valid: " + kTextureTypes + ")");
   }

@@ -8,7 +8,7 @@
 namespace penumbra {
 
 /// The texture types a scene file may name, in the order the error messages list them.
-inline constexpr const char* kTextureTypes = "constant, checkerboard, zone_plate";
+inline constexpr const char* kTextureTypes = "constant, checkerboard, zone_plate, image";
 
 /// Reads parameter `key` of `params`: absent gives the constant `fallback`; a colour ([r, g, b]
 /// or one number) gives a constant texture; an object with a "type" gives that texture:
