@@ -9,6 +9,7 @@
 #include "penumbra/app/accel_bench.h"
 #include "penumbra/app/bsp2d_command.h"
 #include "penumbra/app/collide_command.h"
+#include "penumbra/app/convert_command.h"
 #include "penumbra/app/radiosity_command.h"
 #include "penumbra/app/render_command.h"
 #include "penumbra/core/error.h"
@@ -25,6 +26,7 @@ int run_cli(int argc, char** argv) {
   add_collide_command(app);
   add_bsp2d_command(app);
   add_radiosity_command(app);
+  add_convert_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::RuntimeError& e) {

@@ -25,6 +25,8 @@ class SceneParams {
   const std::string& type() const { return type_; }
   const std::string& file() const { return file_; }
   const std::string& path() const { return path_; }
+  /// The whole object, "type" included (for writing a scene back out).
+  const nlohmann::json& json() const { return object_; }
   bool has(const std::string& key) const;
 
   float get_float(const std::string& key, float fallback) const;
