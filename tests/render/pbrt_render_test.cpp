@@ -77,6 +77,28 @@ TEST(PbrtRender, SameSceneInJsonAndPbrtRendersTheSameBits) {
   EXPECT_GT(region_mean(a, 0, 0, 32, 24).r, 0.05f);
 }
 
+// The bundled Cornell box in both formats (scenes/cornell-box.pbrt is written from the JSON by
+// scripts/cornell_to_pbrt.py) renders the same bits, given the same max depth.
+TEST(PbrtRender, BundledCornellBoxInPbrtAndJsonRendersTheSameBits) {
+  SceneDesc pbrt = test::bundled_scene("cornell-box.pbrt");
+  SceneDesc json = test::bundled_scene("cornell-box.json");
+  EXPECT_TRUE(pbrt.warnings.empty()) << pbrt.warnings.front();
+  EXPECT_EQ(pbrt.render.spp, json.render.spp);
+  EXPECT_EQ(pbrt.render.sampler, json.render.sampler);
+  for (SceneDesc* s : {&pbrt, &json}) {
+    s->render.width = s->render.height = 32;
+    s->render.spp = 4;
+    s->render.max_depth = 6;
+  }
+  const RgbImage a = render_desc(pbrt, 2), b = render_desc(json, 2);
+  size_t differing = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x)
+      for (int c = 0; c < 3; ++c) differing += a.at(x, y)[c] != b.at(x, y)[c];
+  EXPECT_EQ(differing, 0u);
+  EXPECT_GT(region_mean(a, 0, 0, 32, 32).r, 0.05f);
+}
+
 TEST(PbrtRender, AnObjectOnPbrtsPlusXSideIsOnTheRight) {
   SceneDesc s = load_scene(std::string(PENUMBRA_TEST_DATA) + "/pbrt/two-spheres.pbrt");
   s.render.spp = 4;
