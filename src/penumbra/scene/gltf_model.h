@@ -10,9 +10,7 @@
 #define TINYGLTF_NO_STB_IMAGE_WRITE
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #define TINYGLTF_NO_FS
-#define TINYGLTF_NO_INCLUDE_JSON
 #include <tiny_gltf.h>
-#include <nlohmann/json.hpp>
 
 namespace penumbra {
 
