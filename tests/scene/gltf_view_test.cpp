@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "gltf_test_util.h"
+#include "penumbra/scene/scene_loader.h"
 
 namespace penumbra {
 namespace {
@@ -189,6 +190,31 @@ TEST(GltfView, UnsupportedExtensionsAreNamed) {
   EXPECT_TRUE(has_warning(s, "/extensionsUsed/0: extension KHR_texture_transform not supported"));
   EXPECT_TRUE(has_warning(s, "/extensionsRequired/0: required extension EXT_foo not supported"));
   EXPECT_EQ(s.shapes.size(), 1u);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(GltfView, CommittedGltfAndGlbOfTheSameSceneAgree) {
+  const std::string dir = std::string(PENUMBRA_TEST_DATA) + "/gltf/";
+  const SceneDesc a = load_scene(dir + "boxes.gltf");
+  const SceneDesc b = load_scene(dir + "boxes.glb");
+  EXPECT_TRUE(a.warnings.empty()) << a.warnings.front();
+  ASSERT_EQ(a.shapes.size(), 3u);
+  ASSERT_EQ(b.shapes.size(), 3u);
+  for (size_t i = 0; i < 3; ++i)
+    EXPECT_EQ(std::get<TriangleMesh>(a.shapes[i].geometry).positions,
+              std::get<TriangleMesh>(b.shapes[i].geometry).positions);
+  EXPECT_EQ(a.shapes[1].name, "gold box");
+  EXPECT_EQ(a.materials[1].params.type(), "conductor");
+  ASSERT_EQ(a.lights.size(), 1u);
+  EXPECT_EQ(a.lights[0].type(), "point");
+  EXPECT_EQ(a.render.width, 640);
+  EXPECT_EQ(a.render.height, 427);
+  EXPECT_EQ(a.camera.get_vec3("position", Vec3(0.0f)).z, 6.0f);
 }
 
 }  // namespace
