@@ -7,6 +7,7 @@
 
 #include "gltf_test_util.h"
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 
 namespace penumbra {
 namespace {
@@ -180,6 +181,47 @@ TEST(GltfError, ImagesAreNeverRead) {
 TEST(GltfError, SyntaxErrorsNameTheFile) {
   const std::string e = error_of("{\"asset\": ");
   EXPECT_EQ(e.rfind("model.gltf: ", 0), 0u) << e;
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(GltfError, OverflowingTransformNamesTheNode) {
+  test::GltfBuilder b;
+  nlohmann::json nodes = nlohmann::json::array();
+  for (int i = 0; i < 40; ++i)  // 1e10^40 overflows a double
+    nodes.push_back(i + 1 < 40
+                        ? nlohmann::json{{"scale", {1e10, 1e10, 1e10}}, {"children", {i + 1}}}
+                        : nlohmann::json{{"scale", {1e10, 1e10, 1e10}}, {"mesh", 0}});
+  const std::string text =
+      b.doc(
+           {{"scenes", {{{"nodes", {0}}}}}, {"nodes", nodes}, {"meshes", {test::triangle_mesh(b)}}})
+          .dump();
+  try {
+    parse_gltf_scene(text, "model.gltf", "");
+    ADD_FAILURE() << "loaded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("model.gltf:/nodes/"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+  }
+}
+
+TEST(GltfError, CopiesOfAnEmissiveMeshAreBoundedByTheMemoryLimit) {
+  test::GltfBuilder b;
+  nlohmann::json mesh = test::triangle_mesh(b);
+  mesh["primitives"][0]["material"] = 0;
+  nlohmann::json nodes = nlohmann::json::array(), roots = nlohmann::json::array();
+  for (int i = 0; i < 1000; ++i) nodes.push_back({{"mesh", 0}}), roots.push_back(i);
+  const std::string text = b.doc({{"scenes", {{{"nodes", roots}}}},
+                                  {"nodes", nodes},
+                                  {"materials", {{{"emissiveFactor", {1, 1, 1}}}}},
+                                  {"meshes", {mesh}}})
+                               .dump();
+  const ScopedMemoryLimit limit(4096);  // far below 1000 copies of the triangle
+  EXPECT_THROW(parse_gltf_scene(text, "model.gltf", ""), Error);
 }
 
 }  // namespace

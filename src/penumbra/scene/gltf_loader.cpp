@@ -6,6 +6,7 @@
 #include <set>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/memory_limit.h"
 #include "penumbra/scene/gltf_materials.h"
 #include "penumbra/scene/gltf_meshes.h"
 #include "penumbra/scene/gltf_model.h"
@@ -121,6 +122,15 @@ void map_meshes(const GltfSource& src, const std::vector<GltfNodeVisit>& visits,
       scene.warnings.push_back(src.message(
           mesh_path, "emissive mesh used by " + std::to_string(users[mi].size()) +
                          " nodes: copied for each (emissive shapes cannot be instanced)"));
+    if (users[mi].size() > 1 && emissive) {
+      // Copies cost memory per node: bound them before making them.
+      double bytes = 0;
+      for (const GltfPrimitive& p : prims)
+        bytes += double(p.mesh.positions.size()) * (sizeof(Vec3) * 2 + sizeof(Vec2)) +
+                 double(p.mesh.indices.size()) * sizeof(uint32_t);
+      check_memory(bytes * double(users[mi].size()),
+                   src.file + ":" + mesh_path + ": copies of an emissive mesh");
+    }
     if (users[mi].size() == 1 || emissive) {
       for (const auto& [v, t] : users[mi])
         for (size_t j = 0; j < prims.size(); ++j)

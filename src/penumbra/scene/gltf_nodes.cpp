@@ -137,6 +137,9 @@ std::vector<GltfNodeVisit> traverse_gltf_scene(const GltfSource& src,
   while (!stack.empty()) {
     GltfNodeVisit v = std::move(stack.back());
     stack.pop_back();
+    for (const auto& row : v.world.m)
+      for (double x : row)
+        if (!std::isfinite(x)) src.fail(v.path, "the world transform overflows (not finite)");
     const std::vector<int>& ch = src.model.nodes[size_t(v.node)].children;
     for (auto it = ch.rbegin(); it != ch.rend(); ++it)
       stack.push_back({*it, v.world * gltf_local_matrix(src, *it), node_path(*it)});
