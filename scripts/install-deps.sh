@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev libopenexr-dev libpng-dev
+  libtinygltf-dev   # header only: scene/gltf_model.cpp compiles the implementation
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev   # optional: only the accel-bench comparison row uses it
 )

@@ -6,6 +6,7 @@
 #include <set>
 #include <utility>
 
+#include "penumbra/scene/gltf_loader.h"
 #include "penumbra/scene/json_value.h"
 #include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/object_parser.h"
@@ -152,10 +153,11 @@ SceneDesc parse_scene(const std::string& json_text, const std::string& file_name
 }
 
 SceneDesc load_scene(const std::string& path) {
-  // pbrt-v4 scene files by their extension (any case); JSON for everything else.
+  // pbrt-v4 and glTF 2.0 scene files by their extension (any case); JSON for everything else.
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".pbrt") return load_pbrt_scene(path);
+  if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
   const std::string text = read_file_contents(path);
   return parse_scene(text, path, std::filesystem::path(path).parent_path().string());
 }

@@ -13,7 +13,8 @@
 namespace penumbra {
 
 /// Reads the scene file at `path`; mesh files are resolved relative to its directory. A `.pbrt`
-/// file (any case) is read by the pbrt-v4 reader (pbrt_parser.h), anything else as JSON.
+/// file (any case) is read by the pbrt-v4 reader (pbrt_parser.h), a `.gltf` or `.glb` file by the
+/// glTF 2.0 reader (gltf_loader.h), anything else as JSON.
 SceneDesc load_scene(const std::string& path);
 
 /// Parses scene JSON held in memory; `file_name` names it in messages and `base_dir` is the
