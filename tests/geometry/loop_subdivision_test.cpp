@@ -132,6 +132,40 @@ TEST(LoopSubdivision, OctahedronConvergesToASmoothSurfaceInsideItsHull) {
   }
 }
 
+TEST(LoopSubdivision, IcosahedronLimitIsNearlyASphereInsideTheHull) {
+  // Twelve vertices (0, +-1, +-phi) and their cyclic permutations; every vertex has valence 5,
+  // the closest to regular of the platonic solids, so the limit is nearly round.
+  const float g = 0.5f * (1.0f + std::sqrt(5.0f));
+  std::vector<Vec3> p;
+  for (float a : {-1.0f, 1.0f})
+    for (float b : {-g, g}) p.insert(p.end(), {{0, a, b}, {a, b, 0}, {b, 0, a}});
+  for (Vec3& v : p) v = normalize(v);
+  // The 20 faces: triples of mutually nearest vertices, wound outwards.
+  std::vector<uint32_t> idx;
+  float e = 1e9f;
+  for (size_t i = 0; i < p.size(); ++i)
+    for (size_t j = i + 1; j < p.size(); ++j) e = std::min(e, length(p[i] - p[j]));
+  const auto near = [&](size_t i, size_t j) { return length(p[i] - p[j]) < e * 1.01f; };
+  for (uint32_t i = 0; i < 12; ++i)
+    for (uint32_t j = i + 1; j < 12; ++j)
+      for (uint32_t k = j + 1; k < 12; ++k)
+        if (near(i, j) && near(j, k) && near(i, k)) {
+          const bool out = dot(cross(p[j] - p[i], p[k] - p[i]), p[i]) > 0;
+          idx.insert(idx.end(), {i, out ? j : k, out ? k : j});
+        }
+  ASSERT_EQ(idx.size(), 60u);
+  const TriangleMesh m = loop_subdivide(p, idx, 3).mesh;
+  EXPECT_EQ(m.positions.size(), 2u + 20u * 64u / 2u);
+  double lo = 1e9, hi = 0;
+  for (size_t v = 0; v < m.positions.size(); ++v) {
+    const double r = length(m.positions[v]);
+    lo = std::min(lo, r), hi = std::max(hi, r);
+    EXPECT_GT(dot(m.normals[v], normalize(m.positions[v])), 0.99f) << v;
+  }
+  EXPECT_LT(hi, 1.0);               // inside the circumsphere, hence near the hull
+  EXPECT_LT((hi - lo) / hi, 0.05);  // nearly round
+}
+
 TEST(LoopSubdivision, TetrahedronVertexMovesByLoopsWeights) {
   std::vector<Vec3> p;
   std::vector<uint32_t> idx;
