@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "penumbra/scene/pbrt_parser.h"
 #include "render_helpers.h"
@@ -108,6 +109,38 @@ TEST(PbrtRender, AnObjectOnPbrtsPlusXSideIsOnTheRight) {
   const Rgb left = region_mean(img, 8, 10, 20, 22), right = region_mean(img, 28, 10, 40, 22);
   EXPECT_GT(right.r - right.g, 4.0f * std::max(0.0f, left.r - left.g) + 0.01f)
       << "left " << left.r << " " << left.g << ", right " << right.r << " " << right.g;
+}
+
+// A pbrt spot light on pbrt's +x side, aimed straight down, lights the right of the image (where
+// pbrt puts it) and nothing on the left; a loopsubdiv octahedron in its cone renders lit, with
+// finite values everywhere (limit normals as shading normals).
+TEST(PbrtRender, SpotOnPbrtsPlusXSideLightsTheRightOfTheImage) {
+  const SceneDesc s = parse_pbrt_scene(R"(
+LookAt 0 5 0  0 0 0  0 0 1
+Camera "perspective" "float fov" 60
+Film "rgb" "integer xresolution" 32 "integer yresolution" 32
+Sampler "independent" "integer pixelsamples" 4
+Integrator "path" "integer maxdepth" 1
+WorldBegin
+LightSource "spot" "point3 from" [1.5 3 0] "point3 to" [1.5 0 0] "float coneangle" 20
+  "float conedeltaangle" 5 "rgb I" [10 10 10]
+Shape "trianglemesh" "point3 P" [-5 0 -5 5 0 -5 5 0 5 -5 0 5] "integer indices" [0 1 2 0 2 3]
+AttributeBegin
+Translate 1.5 0.4 0.6
+Scale 0.3 0.3 0.3
+Shape "loopsubdiv" "integer levels" 2 "point3 P" [1 0 0 -1 0 0 0 1 0 0 -1 0 0 0 1 0 0 -1]
+  "integer indices" [0 2 4 2 1 4 1 3 4 3 0 4 2 0 5 1 2 5 3 1 5 0 3 5]
+AttributeEnd
+)",
+                                       "spot.pbrt", "");
+  const RgbImage img = render_desc(s, 2);
+  for (int y = 0; y < 32; ++y)
+    for (int x = 0; x < 32; ++x) ASSERT_TRUE(std::isfinite(img.at(x, y).g)) << x << "," << y;
+  // pbrt x = 1.5 is at pixel 16 + 1.5 / (5 tan 30 deg) * 16 = 24; the lit disc has radius 3
+  // tan 20 deg = 1.1, about 6 pixels.
+  const Rgb right = region_mean(img, 21, 13, 27, 19), left = region_mean(img, 5, 13, 11, 19);
+  EXPECT_GT(right.g, 0.05f);
+  EXPECT_EQ(left.g, 0.0f);
 }
 
 }  // namespace

@@ -199,7 +199,7 @@ TEST(PbrtLights, PointDistantInfiniteAndSkippedOnes) {
       "AttributeEnd\n"
       "LightSource \"distant\" \"point3 from\" [0 10 0] \"point3 to\" [0 0 0] \"rgb L\" [3 3 3]\n"
       "LightSource \"infinite\" \"rgb L\" [0.1 0.2 0.3]\n"
-      "LightSource \"spot\" \"float coneangle\" 30\n");
+      "LightSource \"goniometric\" \"string filename\" \"g.exr\"\n");
   ASSERT_EQ(s.lights.size(), 3u);
   EXPECT_EQ(s.lights[0].type(), "point");
   EXPECT_EQ(s.lights[0].get_vec3("position", {}), Vec3(1, 1, 0));
@@ -209,10 +209,54 @@ TEST(PbrtLights, PointDistantInfiniteAndSkippedOnes) {
   EXPECT_EQ(s.lights[1].get_rgb("irradiance", {}), Rgb(3));
   EXPECT_EQ(s.lights[2].type(), "environment");
   EXPECT_EQ(s.lights[2].get_rgb("radiance", {}), Rgb(0.1f, 0.2f, 0.3f));
-  EXPECT_TRUE(has_warning(s, "test.pbrt:10:1: LightSource \"spot\" is not supported"));
+  EXPECT_TRUE(has_warning(s, "test.pbrt:10:1: LightSource \"goniometric\" is not supported"));
   // A map must exist (its mapping is tested with a real file in test_render).
   EXPECT_EQ(pbrt_error("WorldBegin\nLightSource \"infinite\" \"string filename\" \"sky.exr\""),
             "test.pbrt:2:1: infinite light map not found: sky.exr");
+}
+
+TEST(PbrtLights, SpotMapsPositionAxisAnglesThroughTheWorldMirror) {
+  // A plain camera: the importer mirrors the world (x negated, docs/pbrt-import.md).
+  const SceneDesc s = pbrt_scene(
+      "Camera \"perspective\"\nWorldBegin\nAttributeBegin\nTranslate 0 1 0\n"
+      "LightSource \"spot\" \"rgb I\" [1 2 3] \"float scale\" 2 \"point3 from\" [1 0 0]\n"
+      "  \"point3 to\" [2 0 1] \"float coneangle\" 40 \"float conedeltaangle\" 10\n"
+      "AttributeEnd\nLightSource \"spot\"\n");
+  ASSERT_EQ(s.lights.size(), 2u);
+  const SceneParams& a = s.lights[0];
+  EXPECT_EQ(a.type(), "spot");
+  EXPECT_EQ(a.get_vec3("position", {}), Vec3(-1, 1, 0));
+  EXPECT_EQ(a.get_vec3("direction", {}), Vec3(-1, 0, 1));  // to - from, mirrored
+  EXPECT_EQ(a.get_rgb("intensity", {}), Rgb(2, 4, 6));
+  EXPECT_EQ(a.get_float("cone_angle", 0), 40.0f);
+  EXPECT_EQ(a.get_float("cone_delta", 0), 10.0f);
+  // pbrt-v4's defaults: at the origin aimed along +z, 30 and 5 degrees, white.
+  const SceneParams& b = s.lights[1];
+  EXPECT_EQ(b.get_vec3("position", {1, 1, 1}), Vec3(0, 0, 0));
+  EXPECT_EQ(b.get_vec3("direction", {}), Vec3(0, 0, 1));
+  EXPECT_EQ(b.get_float("cone_angle", 0), 30.0f);
+  EXPECT_EQ(b.get_float("cone_delta", 0), 5.0f);
+  EXPECT_EQ(b.get_rgb("intensity", {}), Rgb(1));
+  EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+}
+
+TEST(PbrtLights, SpotPowerNormalisesOverTheConeAndBadAnglesAreErrors) {
+  const SceneDesc s = world(
+      "LightSource \"spot\" \"rgb I\" [1 2 3] \"float power\" 100 \"float coneangle\" 50\n"
+      "  \"float conedeltaangle\" 20\n");
+  // pbrt-v4: luminance(I) = power / k_e, k_e = 2 pi ((1 - cos_start) + (cos_start - cos_end) / 2).
+  const double cs = std::cos(30 * std::numbers::pi / 180),
+               ce = std::cos(50 * std::numbers::pi / 180);
+  const double k_e = 2 * std::numbers::pi * ((1 - cs) + (cs - ce) / 2);
+  const Rgb i = s.lights[0].get_rgb("intensity", {});
+  EXPECT_NEAR(0.2126 * i.r + 0.7152 * i.g + 0.0722 * i.b, 100 / k_e, 1e-3);
+  EXPECT_NEAR(i.g / i.r, 2.0, 1e-5);  // the colour is kept
+  EXPECT_EQ(pbrt_error("WorldBegin\nLightSource \"spot\" \"float coneangle\" 0"),
+            "test.pbrt:2:1: spot light: \"coneangle\" must be in (0, 180] degrees");
+  EXPECT_EQ(pbrt_error("WorldBegin\nLightSource \"spot\" \"float conedeltaangle\" 40"),
+            "test.pbrt:2:1: spot light: \"conedeltaangle\" must be in [0, coneangle] degrees");
+  EXPECT_EQ(pbrt_error("WorldBegin\nLightSource \"spot\" \"point3 to\" [0 0 0]"),
+            "test.pbrt:2:1: spot light: \"from\" and \"to\" coincide");
 }
 
 TEST(PbrtLights, PowerAndBlackbody) {

@@ -61,6 +61,30 @@ json rotation_json(const PbrtEntity& e, const Transform& to_world) {
   return a;
 }
 
+// pbrt-v4's spot light (lights.cpp, SpotLight::Create): "I" * "scale" at "from", aimed at "to",
+// "coneangle" (30) and "conedeltaangle" (5) in degrees; with "power" P the intensity's luminance
+// becomes P / k_e, k_e = 2 pi ((1 - cos_start) + (cos_start - cos_end) / 2) the solid angle that
+// the falloff covers (cos_end = cos(coneangle), cos_start = cos(coneangle - conedeltaangle)).
+json map_spot(const PbrtEntity& e, const Transform& to_world, std::vector<std::string>& warnings) {
+  const double angle = e.params.get_float("coneangle", 30.0);
+  const double delta = e.params.get_float("conedeltaangle", 5.0);
+  if (!(angle > 0 && angle <= 180))
+    e.loc.fail("spot light: \"coneangle\" must be in (0, 180] degrees");
+  if (!(delta >= 0 && delta <= angle))
+    e.loc.fail("spot light: \"conedeltaangle\" must be in [0, coneangle] degrees");
+  const double cos_end = std::cos(angle * std::numbers::pi / 180);
+  const double cos_start = std::cos((angle - delta) * std::numbers::pi / 180);
+  const double k_e = 2 * std::numbers::pi * ((1 - cos_start) + (cos_start - cos_end) / 2);
+  const Rgb i = photometric(e, emitted(e, "I", warnings), "power", k_e);
+  const Vec3 from = e.params.get_vec3("from").value_or(Vec3(0.0f));
+  const Vec3 to = e.params.get_vec3("to").value_or(Vec3(0, 0, 1));
+  const Vec3 d = to_world.vector(to - from);
+  if (!(length(d) > 0)) e.loc.fail("spot light: \"from\" and \"to\" coincide");
+  return json{{"type", "spot"},           {"position", vec_json(to_world.point(from))},
+              {"direction", vec_json(d)}, {"intensity", rgb_json(i)},
+              {"cone_angle", angle},      {"cone_delta", delta}};
+}
+
 }  // namespace
 
 std::optional<json> map_pbrt_light(const PbrtEntity& e, const Transform& to_world,
@@ -106,7 +130,8 @@ std::optional<json> map_pbrt_light(const PbrtEntity& e, const Transform& to_worl
                 {"mapping", "octahedral"},
                 {"transform", json::array({json{{"matrix", rotation_json(e, to_world)}}})}};
   }
-  if (t == "spot" || t == "goniometric" || t == "projection") {
+  if (t == "spot") return map_spot(e, to_world, warnings);
+  if (t == "goniometric" || t == "projection") {
     pbrt_warn(warnings, e.loc, "LightSource \"" + t + "\" is not supported by penumbra; skipped");
     for (const PbrtParam& p : e.params.all()) p.used = true;
     return std::nullopt;

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "penumbra/core/error.h"
+#include "penumbra/geometry/loop_subdivision.h"
 #include "penumbra/scene/gzip_reader.h"
 #include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/ply_reader.h"
@@ -134,6 +135,41 @@ std::vector<ShapeDesc> bilinear_mesh(const PbrtEntity& e, const PbrtShapeContext
   return out;
 }
 
+// pbrt-v4's "loopsubdiv": control points "P", triangles "indices" (required), "levels" (3);
+// subdivided by geometry/loop_subdivision.h, with limit positions and normals as pbrt's.
+std::vector<ShapeDesc> loop_subdiv(const PbrtEntity& e, const PbrtShapeContext& ctx,
+                                   std::vector<std::string>& warnings) {
+  const std::vector<Vec3> p = e.params.get_vec3s("P", "point3");
+  if (p.empty()) e.loc.fail("Shape \"loopsubdiv\" needs \"point3 P\"");
+  if (!e.params.has("indices")) e.loc.fail("Shape \"loopsubdiv\" needs \"integer indices\"");
+  const std::vector<uint32_t> indices = read_indices(e, 3, p.size());
+  const int levels = e.params.get_int("levels", 3);
+  LoopSubdivision sub;
+  try {
+    sub = loop_subdivide(p, indices, levels);
+  } catch (const InputError&) {
+    throw;
+  } catch (const Error& err) {
+    const PbrtParam* lp = e.params.find("levels", "integer");
+    const bool about_levels = std::string(err.what()).find("\"levels\"") != std::string::npos;
+    (lp && about_levels ? lp->loc : e.loc).fail(std::string("Shape \"loopsubdiv\": ") + err.what());
+  }
+  if (sub.nonmanifold_edges)
+    pbrt_warn(warnings, e.loc,
+              fmt::format("loopsubdiv: {} edges are shared by more than two triangles; they are "
+                          "subdivided as creases (boundary rules)",
+                          sub.nonmanifold_edges));
+  if (sub.nonmanifold_vertices)
+    pbrt_warn(warnings, e.loc,
+              fmt::format("loopsubdiv: {} vertices are not on one fan of triangles; they are kept "
+                          "fixed (corners)",
+                          sub.nonmanifold_vertices));
+  orient(sub.mesh, ctx.reverse_orientation);
+  std::vector<ShapeDesc> out;
+  out.push_back(make_shape(std::move(sub.mesh), ctx));
+  return out;
+}
+
 std::vector<ShapeDesc> ply_mesh(const PbrtEntity& e, const PbrtShapeContext& ctx) {
   const std::string name = e.params.get_string("filename", "");
   if (name.empty()) e.loc.fail("Shape \"plymesh\" needs \"string filename\"");
@@ -240,7 +276,8 @@ std::vector<ShapeDesc> map_pbrt_shape(const PbrtEntity& e, const PbrtShapeContex
   if (e.type == "plymesh") return ply_mesh(e, ctx);
   if (e.type == "sphere") return sphere(e, ctx, warnings);
   if (e.type == "disk") return disk(e, ctx, warnings);
-  if (e.type == "cylinder" || e.type == "curve" || e.type == "loopsubdiv")
+  if (e.type == "loopsubdiv") return loop_subdiv(e, ctx, warnings);
+  if (e.type == "cylinder" || e.type == "curve")
     pbrt_warn(warnings, e.loc, "Shape \"" + e.type + "\" is not supported; skipped");
   else
     e.loc.fail("unknown Shape \"" + e.type +

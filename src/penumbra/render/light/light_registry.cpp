@@ -6,6 +6,7 @@
 #include "penumbra/render/light/directional_light.h"
 #include "penumbra/render/light/environment_light.h"
 #include "penumbra/render/light/point_light.h"
+#include "penumbra/render/light/spot_light.h"
 
 namespace penumbra {
 
@@ -17,6 +18,7 @@ using Factory = std::function<std::unique_ptr<Light>(const SceneParams&)>;
 const Registry<Factory>& registry() {
   static const Registry<Factory> all = {
       {"point", "", [](const SceneParams& p) { return std::make_unique<PointLight>(p); }},
+      {"spot", "", [](const SceneParams& p) { return std::make_unique<SpotLight>(p); }},
       {"directional", "",
        [](const SceneParams& p) { return std::make_unique<DirectionalLight>(p); }},
       {"environment", "",
