@@ -84,7 +84,8 @@ bool map_gltf_camera(const GltfSource& src, const std::vector<GltfNodeVisit>& vi
     const double aspect = cam.perspective.aspectRatio;
     if (aspect > 0.0 && std::isfinite(aspect)) {
       scene.render.width = kDefaultWidth;
-      scene.render.height = std::clamp(int(std::lround(kDefaultWidth / aspect)), 1, 65536);
+      // Clamped before the conversion: an aspect ratio of 1e-9 must not overflow an int.
+      scene.render.height = int(std::lround(std::clamp(kDefaultWidth / aspect, 1.0, 65536.0)));
     }
     return true;
   }
