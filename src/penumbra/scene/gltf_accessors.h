@@ -14,8 +14,8 @@ namespace penumbra {
 
 /// The model and the file name that messages start with.
 struct GltfSource {
-  const tinygltf::Model& model;
-  std::string file;
+  const tinygltf::Model& model;  ///< the parsed file
+  std::string file;              ///< its name, for messages
   /// Throws InputError "FILE:PATH: problem".
   [[noreturn]] void fail(const std::string& path, const std::string& problem) const;
   /// "FILE:PATH: problem", the form of a SceneDesc warning.
