@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 
 #include "gltf_test_util.h"
 #include "penumbra/scene/scene_loader.h"
@@ -86,7 +87,8 @@ TEST(GltfView, PunctualLightsMapToPointAndDirectional) {
       {"lights",
        {{{"type", "point"}, {"color", {1, 0.5, 0.25}}, {"intensity", 4}},
         {{"type", "directional"}, {"intensity", 3}},
-        {{"type", "spot"}, {"intensity", 2}, {"range", 10}, {"spot", {{"outerConeAngle", 0.5}}}}}}};
+        {{"type", "spot"}, {"intensity", 2}, {"range", 10}, {"spot", {{"outerConeAngle", 0.5}}}},
+        {{"type", "spot"}, {"spot", {{"innerConeAngle", 0.2}}}}}}};
   const auto node = [](int light, json extra) {
     extra["extensions"] = {{"KHR_lights_punctual", {{"light", light}}}};
     return extra;
@@ -94,14 +96,15 @@ TEST(GltfView, PunctualLightsMapToPointAndDirectional) {
   const SceneDesc s = load_gltf(b.doc(
       {{"extensionsUsed", {"KHR_lights_punctual"}},
        {"extensions", {{"KHR_lights_punctual", lights}}},
-       {"scenes", {{{"nodes", {0, 1, 2, 3}}}}},
+       {"scenes", {{{"nodes", {0, 1, 2, 3, 4}}}}},
        {"nodes",
         {{{"mesh", 0}},
          node(0, {{"translation", {1, 2, 3}}}),
          node(1, {{"rotation", {-h, 0, 0, h}}}),  // -90 degrees about x: -z -> -y (straight down)
-         node(2, {{"translation", {0, 5, 0}}})}},
+         node(2, {{"translation", {0, 5, 0}}}),
+         node(3, {{"rotation", {-h, 0, 0, h}}})}},
        {"meshes", {test::triangle_mesh(b)}}}));
-  ASSERT_EQ(s.lights.size(), 3u);
+  ASSERT_EQ(s.lights.size(), 4u);
   EXPECT_EQ(s.lights[0].type(), "point");
   expect_vec(s.lights[0], "position", Vec3(1, 2, 3));
   const Rgb i = s.lights[0].get_rgb("intensity", Rgb(0.0f));
@@ -111,9 +114,18 @@ TEST(GltfView, PunctualLightsMapToPointAndDirectional) {
   EXPECT_EQ(s.lights[1].type(), "directional");
   expect_vec(s.lights[1], "direction", Vec3(0, -1, 0));
   EXPECT_FLOAT_EQ(s.lights[1].get_rgb("irradiance", Rgb(0.0f)).g, 3.0f);
-  EXPECT_EQ(s.lights[2].type(), "point");
+  // Spot: a cone about the node's -z, outerConeAngle 0.5 rad and innerConeAngle 0 (defaults:
+  // pi/4 and 0).
+  EXPECT_EQ(s.lights[2].type(), "spot");
   expect_vec(s.lights[2], "position", Vec3(0, 5, 0));
-  EXPECT_TRUE(has_warning(s, "lights/2: spot light mapped to a point light"));
+  expect_vec(s.lights[2], "direction", Vec3(0, 0, -1));
+  EXPECT_NEAR(s.lights[2].get_float("cone_angle", 0), 0.5 * 180 / std::numbers::pi, 1e-4);
+  EXPECT_NEAR(s.lights[2].get_float("cone_delta", 0), 0.5 * 180 / std::numbers::pi, 1e-4);
+  EXPECT_FLOAT_EQ(s.lights[2].get_rgb("intensity", Rgb(0.0f)).r, 2.0f);
+  expect_vec(s.lights[3], "direction", Vec3(0, -1, 0));
+  EXPECT_NEAR(s.lights[3].get_float("cone_angle", 0), 45.0, 1e-4);
+  EXPECT_NEAR(s.lights[3].get_float("cone_delta", 0), 45.0 - 0.2 * 180 / std::numbers::pi, 1e-4);
+  EXPECT_FALSE(has_warning(s, "mapped to a point light"));
   EXPECT_TRUE(has_warning(s, "lights/2/range: range ignored"));
   EXPECT_FALSE(has_warning(s, "not supported"));
 }

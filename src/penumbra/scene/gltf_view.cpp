@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 namespace penumbra {
 
@@ -112,15 +113,24 @@ void map_gltf_lights(const GltfSource& src, const std::vector<GltfNodeVisit>& vi
     if (l.range > 0.0)
       scene.warnings.push_back(src.message(at + "/range", "range ignored (no cut-off)"));
     json p;
-    if (l.type == "point" || l.type == "spot") {
-      if (l.type == "spot")
-        scene.warnings.push_back(src.message(
-            at,
-            "spot light mapped to a point light (penumbra has no \"spot\" light here): the "
-            "cone is ignored"));
+    if (l.type == "point") {
       p = {{"type", "point"},
            {"position", to_json(apply(v.world, {0, 0, 0}, 1))},
            {"intensity", json::array({c.r, c.g, c.b})}};
+    } else if (l.type == "spot") {
+      // A cone about the node's -z; the spec asks 0 <= inner < outer <= pi/2 and leaves the
+      // falloff between them to the renderer: penumbra's (pbrt-v4's) smoothstep in cos.
+      const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+      if (!(inner >= 0 && inner < outer && outer <= std::numbers::pi / 2 + 1e-9))
+        src.fail(at + "/spot",
+                 "cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+      const double deg = 180.0 / std::numbers::pi;
+      p = {{"type", "spot"},
+           {"position", to_json(apply(v.world, {0, 0, 0}, 1))},
+           {"direction", to_json(unit(src, apply(v.world, {0, 0, -1}, 0), v.path))},
+           {"intensity", json::array({c.r, c.g, c.b})},
+           {"cone_angle", std::min(outer * deg, 90.0)},
+           {"cone_delta", std::min(outer * deg, 90.0) - inner * deg}};
     } else if (l.type == "directional") {
       p = {{"type", "directional"},
            {"direction", to_json(unit(src, apply(v.world, {0, 0, -1}, 0), v.path))},
