@@ -13,6 +13,7 @@
 namespace penumbra {
 namespace {
 
+using test::differing_values;
 using test::render_desc;
 
 // Every file of write_scene_json written under `dir`; returns the scene file's path.
@@ -24,16 +25,6 @@ std::string write_all(const test::TempDir& dir, const SceneDesc& scene) {
     std::ofstream(p, std::ios::binary) << f.bytes;
   }
   return dir.file("scene.json");
-}
-
-size_t differing_values(const RgbImage& a, const RgbImage& b) {
-  EXPECT_EQ(a.width(), b.width());
-  EXPECT_EQ(a.height(), b.height());
-  size_t n = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x)
-      for (int c = 0; c < 3; ++c) n += a.at(x, y)[c] != b.at(x, y)[c];
-  return n;
 }
 
 // A pbrt scene with a textured mesh with normals and uvs, a sphere, an area light, a

@@ -124,11 +124,7 @@ TEST(GltfRender, SameSceneInJsonAndGltfRendersTheSameBits) {
   const RgbImage b = render_desc(j, 2);
   ASSERT_EQ(a.width(), 32);
   ASSERT_EQ(a.height(), 24);
-  size_t differing = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x)
-      for (int c = 0; c < 3; ++c) differing += a.at(x, y)[c] != b.at(x, y)[c];
-  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(test::differing_values(a, b), 0u);
   // Not trivially equal: the lit boxes are in the picture, red on both sides of the centre.
   const Rgb left = region_mean(a, 4, 8, 14, 20), right = region_mean(a, 18, 8, 28, 20);
   EXPECT_GT(left.r, 2 * left.g);

@@ -69,11 +69,7 @@ TEST(PbrtRender, SameSceneInJsonAndPbrtRendersTheSameBits) {
   const RgbImage b = render_desc(scene_from_text(kJson), 2);
   ASSERT_EQ(a.width(), 32);
   ASSERT_EQ(a.height(), 24);
-  size_t differing = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x)
-      for (int c = 0; c < 3; ++c) differing += a.at(x, y)[c] != b.at(x, y)[c];
-  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(test::differing_values(a, b), 0u);
   // Not trivially equal: the light and the sphere are in the picture.
   EXPECT_GT(region_mean(a, 0, 0, 32, 24).r, 0.05f);
 }
@@ -92,11 +88,7 @@ TEST(PbrtRender, BundledCornellBoxInPbrtAndJsonRendersTheSameBits) {
     s->render.max_depth = 6;
   }
   const RgbImage a = render_desc(pbrt, 2), b = render_desc(json, 2);
-  size_t differing = 0;
-  for (int y = 0; y < a.height(); ++y)
-    for (int x = 0; x < a.width(); ++x)
-      for (int c = 0; c < 3; ++c) differing += a.at(x, y)[c] != b.at(x, y)[c];
-  EXPECT_EQ(differing, 0u);
+  EXPECT_EQ(test::differing_values(a, b), 0u);
   EXPECT_GT(region_mean(a, 0, 0, 32, 32).r, 0.05f);
 }
 

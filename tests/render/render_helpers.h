@@ -1,15 +1,18 @@
 #pragma once
 // Shared helpers of the render tests: scenes from JSON text, and rendering them in memory.
+#include <gtest/gtest.h>
+
+#include <algorithm>
 #include <memory>
 #include <string>
 
 #include "penumbra/core/parallel.h"
 #include "penumbra/render/camera/camera_registry.h"
 #include "penumbra/render/film.h"
+#include "penumbra/render/filter/filter.h"
 #include "penumbra/render/integrator/integrator_registry.h"
 #include "penumbra/render/render_job.h"
 #include "penumbra/render/renderer.h"
-#include "penumbra/render/filter/filter.h"
 #include "penumbra/render/sampler/sampler_registry.h"
 #include "penumbra/render/world.h"
 #include "penumbra/scene/scene_loader.h"
@@ -22,6 +25,19 @@ inline RgbImage render_desc(const SceneDesc& desc, int threads = 0) {
   RenderJob job(desc);
   job.run();
   return job.film->resolve();
+}
+
+/// The number of channel values in which two images differ (a size mismatch is a failure and
+/// counts every value of the larger image).
+inline size_t differing_values(const RgbImage& a, const RgbImage& b) {
+  EXPECT_EQ(a.width(), b.width());
+  EXPECT_EQ(a.height(), b.height());
+  if (a.width() != b.width() || a.height() != b.height()) return 3 * std::max(a.size(), b.size());
+  size_t n = 0;
+  for (int y = 0; y < a.height(); ++y)
+    for (int x = 0; x < a.width(); ++x)
+      for (int c = 0; c < 3; ++c) n += a.at(x, y)[c] != b.at(x, y)[c];
+  return n;
 }
 
 /// Parses scene JSON text (meshes relative to the repository root).

@@ -58,25 +58,29 @@ RenderSettings parse_render(const json& v, const JsonPlace& place) {
   return r;
 }
 
-// Materials: an object from names to {"type": ..., parameters}. Duplicate names are duplicate
-// keys, which parse_json already rejects.
+// The file name `v` (a JSON string) resolved against `base_dir` unless absolute or empty.
+void resolve_file(json& v, const std::string& base_dir) {
+  const std::filesystem::path f(v.get<std::string>());
+  if (!f.empty() && f.is_relative() && !base_dir.empty())
+    v = (std::filesystem::path(base_dir) / f).lexically_normal().string();
+}
+
 // The "file" of every image texture inside a material (a value {"type": "image", "file": ...} at
 // any depth), resolved relative to `base_dir` unless absolute.
 void resolve_texture_files(json& v, const std::string& base_dir, int depth = 0) {
   if (depth > 64 || base_dir.empty()) return;
   if (v.is_object()) {
     const auto type = v.find("type"), file = v.find("file");
-    if (type != v.end() && *type == "image" && file != v.end() && file->is_string()) {
-      const std::filesystem::path f(file->get<std::string>());
-      if (!f.empty() && f.is_relative())
-        *file = (std::filesystem::path(base_dir) / f).lexically_normal().string();
-    }
+    if (type != v.end() && *type == "image" && file != v.end() && file->is_string())
+      resolve_file(*file, base_dir);
     for (auto& [key, child] : v.items()) resolve_texture_files(child, base_dir, depth + 1);
   } else if (v.is_array()) {
     for (auto& child : v) resolve_texture_files(child, base_dir, depth + 1);
   }
 }
 
+// Materials: an object from names to {"type": ..., parameters}. Duplicate names are duplicate
+// keys, which parse_json already rejects.
 std::vector<MaterialDesc> parse_materials(json& v, const JsonPlace& place,
                                           const std::string& base_dir) {
   if (!v.is_object()) place.fail("expected an object mapping material names to materials");
@@ -100,10 +104,8 @@ std::vector<SceneParams> parse_lights(json& v, const JsonPlace& place,
   for (size_t i = 0; i < v.size(); ++i) {
     const JsonPlace at = place.index(i);
     for (const char* key : {"map", "file"}) {
-      if (!v[i].is_object() || !v[i].contains(key) || !v[i][key].is_string()) continue;
-      const std::filesystem::path file(v[i][key].get<std::string>());
-      if (!file.empty() && file.is_relative() && !base_dir.empty())
-        v[i][key] = (std::filesystem::path(base_dir) / file).lexically_normal().string();
+      if (v[i].is_object() && v[i].contains(key) && v[i][key].is_string())
+        resolve_file(v[i][key], base_dir);
     }
     out.emplace_back(std::move(v[i]), at.file, at.path);
   }
