@@ -28,10 +28,11 @@ std::string write_all(const test::TempDir& dir, const SceneDesc& scene) {
 }
 
 // A pbrt scene with a textured mesh with normals and uvs, a sphere, an area light, a
-// checkerboard, a point light and two instances of an object.
+// checkerboard, a point light, two instances of an object, a moving sphere (so the camera has a
+// shutter) and an off-centre screen window.
 const char* const kPbrt = R"(
 LookAt 0 1 -4  0 1 0  0 1 0
-Camera "perspective" "float fov" 45
+Camera "perspective" "float fov" 45 "float screenwindow" [-1.2 1.4 -1 1.1]
 Film "rgb" "integer xresolution" 40 "integer yresolution" 30
 Sampler "independent" "integer pixelsamples" 4
 Integrator "path" "integer maxdepth" 4
@@ -64,6 +65,9 @@ AttributeEnd
 Material "dielectric" "float eta" 1.5
 AttributeBegin
   Translate 0.7 0.5 0
+  ActiveTransform EndTime
+  Translate 0 0.3 0
+  ActiveTransform All
   Shape "sphere" "float radius" 0.5
 AttributeEnd
 )";
@@ -71,6 +75,9 @@ AttributeEnd
 TEST(ConvertRoundTrip, PbrtSceneWrittenAsJsonRendersTheSameBits) {
   const SceneDesc pbrt = parse_pbrt_scene(kPbrt, "test.pbrt", "");
   ASSERT_EQ(pbrt.instances.size(), 2u);
+  EXPECT_TRUE(pbrt.warnings.empty()) << pbrt.warnings.front();
+  ASSERT_TRUE(pbrt.camera.json().contains("shutter"));
+  ASSERT_TRUE(pbrt.camera.json().contains("screen_window"));
   const test::TempDir dir;
   const SceneDesc json = load_scene(write_all(dir, pbrt));
   ASSERT_EQ(json.shapes.size(), pbrt.shapes.size());
@@ -80,6 +87,9 @@ TEST(ConvertRoundTrip, PbrtSceneWrittenAsJsonRendersTheSameBits) {
   // Meshes bit for bit, and transforms number for number.
   for (size_t i = 0; i < pbrt.shapes.size(); ++i) {
     EXPECT_EQ(json.shapes[i].to_world.matrix().m, pbrt.shapes[i].to_world.matrix().m) << i;
+    ASSERT_EQ(json.shapes[i].to_world_end.has_value(), pbrt.shapes[i].to_world_end.has_value());
+    if (pbrt.shapes[i].to_world_end)
+      EXPECT_EQ(json.shapes[i].to_world_end->matrix().m, pbrt.shapes[i].to_world_end->matrix().m);
     EXPECT_EQ(json.shapes[i].material, pbrt.shapes[i].material);
     EXPECT_EQ(json.shapes[i].emission.has_value(), pbrt.shapes[i].emission.has_value());
     const auto* a = std::get_if<TriangleMesh>(&pbrt.shapes[i].geometry);
@@ -94,6 +104,8 @@ TEST(ConvertRoundTrip, PbrtSceneWrittenAsJsonRendersTheSameBits) {
   const RgbImage before = render_desc(pbrt, 2), after = render_desc(json, 2);
   EXPECT_EQ(differing_values(before, after), 0u);
   EXPECT_GT(test::region_mean(before, 0, 0, 40, 30).r, 0.05f);  // not trivially equal
+  EXPECT_EQ(json.camera.json().at("shutter"), pbrt.camera.json().at("shutter"));
+  EXPECT_EQ(json.camera.json().at("screen_window"), pbrt.camera.json().at("screen_window"));
 }
 
 // A bundled JSON scene survives the round trip too (inline meshes become PLY files).

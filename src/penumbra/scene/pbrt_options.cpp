@@ -16,9 +16,7 @@ using nlohmann::json;
 constexpr int kDefaultWidth = 1280, kDefaultHeight = 720, kDefaultSpp = 16, kDefaultDepth = 5;
 
 std::string fmt_num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%g", v);
-  return buf;
+  return pbrt_format_number(v);
 }
 
 void map_film(const std::optional<PbrtEntity>& film, SceneDesc& scene) {
@@ -162,7 +160,8 @@ void map_accelerator(const std::optional<PbrtEntity>& accel, SceneDesc& scene) {
 }
 
 void map_camera(const PbrtOptions& o, const Transform& world_from_pbrt, SceneDesc& scene) {
-  double fov = 90, lens_radius = 0, focal_distance = 1e6;
+  double fov = 90, lens_radius = 0, focal_distance = 1e6, open = 0, close = 1;
+  std::vector<double> window;  // screenwindow, when given
   if (o.camera) {
     const PbrtEntity& c = *o.camera;
     if (c.type != "perspective")
@@ -174,12 +173,32 @@ void map_camera(const PbrtOptions& o, const Transform& world_from_pbrt, SceneDes
     if (!(fov > 0 && fov < 180)) c.loc.fail("fov must lie in (0, 180) degrees");
     if (lens_radius < 0) c.loc.fail("lensradius must not be negative");
     if (!(focal_distance > 0)) c.loc.fail("focaldistance must be positive");
+    if (const PbrtParam* sw = c.params.find("screenwindow", "float")) {
+      if (sw->numbers.size() != 4)
+        sw->loc.fail("screenwindow takes four numbers [x0 x1 y0 y1], got " +
+                     std::to_string(sw->numbers.size()));
+      const std::vector<double>& v = sw->numbers;
+      if (!(v[0] < v[1] && v[2] < v[3]))
+        sw->loc.fail("screenwindow [x0 x1 y0 y1] must have x0 < x1 and y0 < y1");
+      if (!std::all_of(v.begin(), v.end(), [](double x) { return std::abs(x) <= 1e6; }))
+        sw->loc.fail("screenwindow values must lie within ±1e6");
+      window = v;
+    }
+    open = c.params.get_float("shutteropen", 0);
+    close = c.params.get_float("shutterclose", 1);
+    if (close < open) {  // as pbrt-v4
+      pbrt_warn(scene.warnings, c.loc,
+                "shutterclose " + fmt_num(close) + " is before shutteropen " + fmt_num(open) +
+                    "; they are swapped");
+      std::swap(open, close);
+    }
     c.params.report_unused(scene.warnings, c.what("Camera"));
   }
-  // pbrt's fov spans the shorter image axis; penumbra's vfov the vertical one.
+  // pbrt's fov spans the shorter image axis; penumbra's vfov the vertical one. With a
+  // screenwindow both use the fov's tangent as the unit of the window (pbrt's screen space).
   const int w = scene.render.width, h = scene.render.height;
   double vfov = fov;
-  if (w < h) {
+  if (w < h && window.empty()) {
     const double t = std::tan(fov * std::numbers::pi / 360.0) * double(h) / double(w);
     vfov = std::atan(t) * 360.0 / std::numbers::pi;
   }
@@ -201,6 +220,9 @@ void map_camera(const PbrtOptions& o, const Transform& world_from_pbrt, SceneDes
     cam["aperture_radius"] = lens_radius;
     cam["focus_distance"] = focal_distance;
   }
+  if (!window.empty()) cam["screen_window"] = window;
+  const double span = o.end_time - o.start_time;
+  cam["shutter"] = {(open - o.start_time) / span, (close - o.start_time) / span};
   const PbrtLoc at = o.camera ? o.camera->loc : PbrtLoc{scene.file, 1, 1};
   scene.camera = SceneParams(std::move(cam), at.str(), "");
 }

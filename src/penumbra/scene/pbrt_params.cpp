@@ -2,6 +2,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <map>
 
@@ -120,6 +121,12 @@ bool split_declaration(const std::string& s, std::string& type, std::string& nam
 }
 
 }  // namespace
+
+std::string pbrt_format_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%g", v);
+  return buf;
+}
 
 bool pbrt_parse_number(const std::string& text, double& value) {
   const char* begin = text.c_str();

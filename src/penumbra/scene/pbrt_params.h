@@ -82,5 +82,7 @@ void pbrt_warn(std::vector<std::string>& warnings, const PbrtLoc& loc, const std
 bool pbrt_parse_number(const std::string& text, double& value);
 /// Parses a word as a number; throws InputError at `t` otherwise.
 double pbrt_number(const PbrtToken& t);
+/// A number for messages ("%g").
+std::string pbrt_format_number(double v);
 
 }  // namespace penumbra

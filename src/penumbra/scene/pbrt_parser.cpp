@@ -1,5 +1,6 @@
 #include "penumbra/scene/pbrt_parser.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "penumbra/scene/mesh_reader.h"
@@ -103,8 +104,12 @@ void PbrtParser::directive(const PbrtToken& t) {
     require_world(t, false);
     option_directive(t, options_.camera);
     // The CTM here is camera-from-world; pbrt names its inverse "camera".
-    options_.camera_to_world = gs_.ctm.inverted();
-    named_["camera"] = options_.camera_to_world;
+    options_.camera_to_world = gs_.ctm.start.inverted();
+    named_["camera"] = {gs_.ctm.start.inverted(), gs_.ctm.end.inverted()};
+    if (gs_.ctm.animated())
+      pbrt_warn(warnings(), t.loc,
+                "the camera moves (its transform differs at the start and the end): penumbra's "
+                "cameras do not move, the start transform is used");
     return;
   }
   if (d == "Film") return require_world(t, false), option_directive(t, options_.film);
@@ -176,54 +181,77 @@ bool PbrtParser::reported_directive(const PbrtToken& t) {
     object_directive(t);
     return true;
   }
-  if (d == "TransformTimes") {
-    numbers(t, 2);
-    pbrt_warn(warnings(), t.loc, "TransformTimes: animated transforms are not supported; ignored");
-    return true;
-  }
-  if (d == "ActiveTransform") {
-    const PbrtToken w = tok().next();
-    if (w.kind != Kind::kWord || (w.text != "All" && w.text != "StartTime" && w.text != "EndTime"))
-      w.loc.fail("ActiveTransform expects All, StartTime or EndTime, got " + w.describe());
-    if (w.text != "All")
-      pbrt_warn(warnings(), t.loc,
-                "ActiveTransform " + w.text +
-                    ": animated transforms are not supported; both times get the same transform");
-    return true;
-  }
   return false;
 }
 
 bool PbrtParser::transform_directive(const PbrtToken& t) {
   const std::string& d = t.text;
-  Transform& ctm = gs_.ctm;
+  // Each directive changes the transforms that ActiveTransform selects (both by default), as
+  // pbrt-v4's graphics state does; CoordSysTransform sets both.
+  const auto apply = [&](auto&& f) {
+    if (gs_.active & kStartTransform) gs_.ctm.start = f(gs_.ctm.start);
+    if (gs_.active & kEndTransform) gs_.ctm.end = f(gs_.ctm.end);
+  };
+  const auto concat = [&](const Transform& m) { apply([&](const Transform& c) { return c * m; }); };
   if (d == "Identity") {
-    ctm = Transform();
+    apply([](const Transform&) { return Transform(); });
   } else if (d == "Translate") {
-    ctm = ctm * pbrt_translate(numbers(t, 3));
+    concat(pbrt_translate(numbers(t, 3)));
   } else if (d == "Scale") {
-    ctm = ctm * pbrt_scale(numbers(t, 3), t.loc);
+    concat(pbrt_scale(numbers(t, 3), t.loc));
   } else if (d == "Rotate") {
-    ctm = ctm * pbrt_rotate(numbers(t, 4), t.loc);
+    concat(pbrt_rotate(numbers(t, 4), t.loc));
   } else if (d == "LookAt") {
-    ctm = ctm * pbrt_look_at(numbers(t, 9), t.loc);
+    concat(pbrt_look_at(numbers(t, 9), t.loc));
   } else if (d == "Transform") {
-    ctm = pbrt_matrix(numbers(t, 16), t.loc);
+    const Transform m = pbrt_matrix(numbers(t, 16), t.loc);
+    apply([&](const Transform&) { return m; });
   } else if (d == "ConcatTransform") {
-    ctm = ctm * pbrt_matrix(numbers(t, 16), t.loc);
+    concat(pbrt_matrix(numbers(t, 16), t.loc));
   } else if (d == "CoordinateSystem") {
-    named_[string_arg(t)] = ctm;
+    named_[string_arg(t)] = gs_.ctm;
   } else if (d == "CoordSysTransform") {
     const std::string name = string_arg(t);
     const auto it = named_.find(name);
     if (it == named_.end())
       pbrt_warn(warnings(), t.loc, "CoordSysTransform: unknown coordinate system \"" + name + "\"");
     else
-      ctm = it->second;
+      gs_.ctm = it->second;
+  } else if (d == "ActiveTransform") {
+    const PbrtToken w = tok().next();
+    if (w.kind == Kind::kWord && w.text == "All")
+      gs_.active = kStartTransform | kEndTransform;
+    else if (w.kind == Kind::kWord && w.text == "StartTime")
+      gs_.active = kStartTransform;
+    else if (w.kind == Kind::kWord && w.text == "EndTime")
+      gs_.active = kEndTransform;
+    else
+      w.loc.fail("ActiveTransform expects All, StartTime or EndTime, got " + w.describe());
+  } else if (d == "TransformTimes") {
+    transform_times(t);
   } else {
     return false;
   }
   return true;
+}
+
+void PbrtParser::transform_times(const PbrtToken& t) {
+  require_world(t, false);
+  const std::vector<double> v = numbers(t, 2);
+  if (!(std::isfinite(v[0]) && std::isfinite(v[1]) && v[0] < v[1]))
+    t.loc.fail("TransformTimes: the start time must be before the end time, got " +
+               pbrt_format_number(v[0]) + " and " + pbrt_format_number(v[1]));
+  options_.start_time = v[0];
+  options_.end_time = v[1];
+}
+
+const Transform& PbrtParser::static_ctm(const PbrtToken& t, const std::string& what) {
+  if (gs_.ctm.animated())
+    pbrt_warn(warnings(), t.loc,
+              what +
+                  " cannot move in penumbra: its transform at the start time is used (the "
+                  "CTM differs at the end time)");
+  return gs_.ctm.start;
 }
 
 void PbrtParser::option_directive(const PbrtToken& t, std::optional<PbrtEntity>& slot) {
@@ -237,7 +265,8 @@ void PbrtParser::world_begin(const PbrtToken& t) {
   if (in_world_) t.loc.fail("WorldBegin given twice");
   in_world_ = true;
   // pbrt resets the CTM and names the world frame; the options are complete now.
-  gs_.ctm = Transform();
+  gs_.ctm = {};
+  gs_.active = kStartTransform | kEndTransform;
   named_["world"] = gs_.ctm;
   if (pbrt_camera_mirrors(options_.camera_to_world)) world_from_pbrt_ = scale({-1, 1, 1});
   map_pbrt_options(options_, world_from_pbrt_, scene_);
@@ -251,10 +280,12 @@ void PbrtParser::attribute_end(const PbrtToken& t, bool transform_only) {
   if (top.transform_only != transform_only)
     t.loc.fail(t.text + " closes the " +
                (top.transform_only ? "TransformBegin" : "AttributeBegin") + " at " + top.loc.str());
-  if (transform_only)
+  if (transform_only) {  // the CTM and ActiveTransform, as pbrt-v3 restores them
     gs_.ctm = top.state.ctm;
-  else
+    gs_.active = top.state.active;
+  } else {
     gs_ = top.state;
+  }
   stack_.pop_back();
 }
 

@@ -27,9 +27,20 @@ inline constexpr const char* kDefaultMaterial = "pbrt-default";
 /// The current material of shapes that are not surfaces (pbrt's "interface").
 inline constexpr const char* kInterface = "\x01interface";
 
+/// The two transformation matrices of pbrt-v4's graphics state: at the start and at the end of
+/// TransformTimes. Shapes whose two differ move (ShapeDesc::to_world_end).
+struct TransformPair {
+  Transform start, end;
+  bool animated() const { return !(start.matrix() == end.matrix()); }
+};
+
+/// ActiveTransform's bits: which of the pair the transform directives change.
+inline constexpr unsigned kStartTransform = 1, kEndTransform = 2;
+
 /// What AttributeBegin saves and AttributeEnd restores.
 struct GraphicsState {
-  Transform ctm;
+  TransformPair ctm;
+  unsigned active = kStartTransform | kEndTransform;  ///< ActiveTransform
   bool reverse_orientation = false;
   std::string material;  ///< name of a MaterialDesc; "" for pbrt's default (diffuse 0.5)
   std::optional<PbrtAreaLight> area_light;
@@ -76,6 +87,11 @@ class PbrtParser {
   void add_material(const std::string& name, PbrtEntity e);
   void finish();
   void require_world(const PbrtToken& t, bool world);
+  /// The CTM at a directive that cannot move (a light, an instance, an emitter): its start
+  /// transform, with a warning naming `what` when the CTM is animated.
+  const Transform& static_ctm(const PbrtToken& t, const std::string& what);
+  void transform_times(const PbrtToken& t);
+  void set_motion(ShapeDesc& s, const PbrtLoc& loc);
 
   std::string string_arg(const PbrtToken& directive);
   PbrtEntity entity(const PbrtToken& directive) {
@@ -92,10 +108,11 @@ class PbrtParser {
   std::vector<Source> sources_;
   GraphicsState gs_;
   std::vector<SavedState> stack_;
-  std::map<std::string, Transform> named_;  ///< named coordinate systems
+  std::map<std::string, TransformPair> named_;  ///< named coordinate systems
   PbrtOptions options_;
   bool in_world_ = false;
   Transform world_from_pbrt_;      ///< the mirror x -> -x, or the identity (set at WorldBegin)
+  bool moving_ = false;            ///< some shape moves (the camera then gets its shutter)
   std::optional<PbrtLoc> object_;  ///< inside ObjectBegin ... ObjectEnd
   size_t object_index_ = 0;        ///< the object being defined (index in scene_.objects)
   std::map<std::string, size_t> objects_;  ///< object names -> index in scene_.objects

@@ -1,5 +1,7 @@
 #include "penumbra/scene/pbrt_transforms.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "penumbra/core/error.h"
@@ -9,6 +11,36 @@ namespace penumbra {
 namespace {
 Vec3 vec3(const std::vector<double>& v, size_t at) {
   return {float(v[at]), float(v[at + 1]), float(v[at + 2])};
+}
+
+using Mat3 = std::array<std::array<double, 3>, 3>;
+
+// The orthogonal factor R of the polar decomposition M = R S of an invertible 3x3 matrix, by
+// Higham's iteration R <- (R + R^-T) / 2, which converges quadratically.
+Mat3 polar_rotation(const Transform& t) {
+  Mat3 r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r[i][j] = t.matrix().m[i][j];
+  for (int iter = 0; iter < 100; ++iter) {
+    // The inverse transpose by cofactors: (R^-T)_ij = cof_ij / det.
+    Mat3 c;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const int i1 = (i + 1) % 3, i2 = (i + 2) % 3, j1 = (j + 1) % 3, j2 = (j + 2) % 3;
+        c[i][j] = r[i1][j1] * r[i2][j2] - r[i1][j2] * r[i2][j1];
+      }
+    const double det = r[0][0] * c[0][0] + r[0][1] * c[0][1] + r[0][2] * c[0][2];
+    if (!(std::abs(det) > 0)) break;
+    double change = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const double next = 0.5 * (r[i][j] + c[i][j] / det);
+        change = std::max(change, std::abs(next - r[i][j]));
+        r[i][j] = next;
+      }
+    if (change < 1e-15) break;
+  }
+  return r;
 }
 }  // namespace
 
@@ -60,6 +92,15 @@ Transform pbrt_look_at(const std::vector<double>& v, const PbrtLoc& loc) {
     m.m[i][3] = e[i];
   }
   return Transform(m).inverted();
+}
+
+double pbrt_rotation_between(const Transform& a, const Transform& b) {
+  const Mat3 ra = polar_rotation(a), rb = polar_rotation(b);
+  // trace(Rb Ra^T) = 1 + 2 cos(angle).
+  double trace = 0;
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) trace += rb[i][k] * ra[i][k];
+  return std::acos(std::clamp(0.5 * (trace - 1), -1.0, 1.0));
 }
 
 Transform pbrt_matrix(const std::vector<double>& v, const PbrtLoc& loc) {

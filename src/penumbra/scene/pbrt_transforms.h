@@ -25,4 +25,11 @@ Transform pbrt_look_at(const std::vector<double>& v, const PbrtLoc& loc);
 /// row-major reading. A singular matrix is an InputError.
 Transform pbrt_matrix(const std::vector<double>& v, const PbrtLoc& loc);
 
+/// The angle in radians of the turn from `a`'s rotation to `b`'s, where each transform's rotation
+/// is the orthogonal factor of the polar decomposition of its linear part (pbrt-v4's
+/// AnimatedTransform interpolates that factor by slerp, the rest linearly). 0 when the two differ
+/// only by translation and scale; then moving every vertex on a straight line, as penumbra does,
+/// is exactly pbrt's motion.
+double pbrt_rotation_between(const Transform& a, const Transform& b);
+
 }  // namespace penumbra

@@ -1,9 +1,14 @@
 /// The world block of a pbrt scene: shapes with their material and area light, materials, textures,
 /// light sources, and the checks at the end of the file.
 #include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <variant>
 
 #include "penumbra/scene/pbrt_parser_state.h"
 #include "penumbra/scene/pbrt_shapes.h"
+#include "penumbra/scene/pbrt_transforms.h"
+#include "penumbra/scene/transform_parser.h"
 
 namespace penumbra::pbrt_detail {
 
@@ -20,10 +25,17 @@ void PbrtParser::shape(const PbrtToken& t) {
   require_world(t, true);
   PbrtEntity e = entity(t);
   if (gs_.material == kInterface) return;  // an interface material has no surface
+  const bool emits = gs_.area_light && !gs_.area_light->radiance.is_black();
+  // A shape whose CTM differs at the start and the end moves, unless it cannot: shapes of
+  // objects and emitters are static in penumbra (they get the start transform and a warning).
+  const bool moves = gs_.ctm.animated() && !object_ && !emits;
+  const Transform& start =
+      moves ? gs_.ctm.start
+            : static_ctm(t, object_ ? "a shape in an object definition" : "an emitting shape");
   // In an object definition the shape is kept in the object's space, the full CTM at the
   // shape (which includes the CTM at ObjectBegin); the instance then adds its own CTM and the
   // world mirror, as pbrt-v4 composes them.
-  PbrtShapeContext ctx{object_ ? gs_.ctm : world_from_pbrt_ * gs_.ctm,
+  PbrtShapeContext ctx{object_ ? start : world_from_pbrt_ * start,
                        gs_.reverse_orientation,
                        {sources_.back().dir, base_dir_}};
   std::vector<ShapeDesc> shapes = map_pbrt_shape(e, ctx, warnings());
@@ -32,7 +44,8 @@ void PbrtParser::shape(const PbrtToken& t) {
   for (ShapeDesc& s : shapes) {
     s.material = mat;
     s.path = e.loc.str();
-    if (gs_.area_light && !gs_.area_light->radiance.is_black()) {
+    if (moves) set_motion(s, e.loc);
+    if (emits) {
       if (object_) {  // as pbrt-v4: a warning, and the shape is kept without its light
         pbrt_warn(warnings(), e.loc,
                   "area lights are not supported with object instancing; the shape is kept "
@@ -47,6 +60,28 @@ void PbrtParser::shape(const PbrtToken& t) {
     else
       scene_.shapes.push_back(std::move(s));
   }
+}
+
+void PbrtParser::set_motion(ShapeDesc& s, const PbrtLoc& loc) {
+  const Transform end = world_from_pbrt_ * gs_.ctm.end;
+  if (std::holds_alternative<SphereData>(s.geometry) && !is_similarity(end))
+    loc.fail(
+        "a sphere's transform at the end time must be a similarity (rotations, translations, "
+        "uniform scales): penumbra has no ellipsoids");
+  if (end.swaps_handedness() != s.to_world.swaps_handedness())
+    loc.fail(
+        "the transform at the end time mirrors the shape and the one at the start does not (or "
+        "the reverse): the shape would turn inside out while moving");
+  const double turn = pbrt_rotation_between(s.to_world, end) * 180.0 / std::numbers::pi;
+  if (turn > 1.0)
+    pbrt_warn(warnings(), loc,
+              "the shape turns by " + pbrt_format_number(turn) +
+                  " degrees between the start and the end time; penumbra moves its vertices on "
+                  "straight lines, so mid-way it is " +
+                  pbrt_format_number(100.0 * (1.0 - std::cos(turn * std::numbers::pi / 360.0))) +
+                  " % closer to the axis than pbrt's interpolated rotation puts it");
+  s.to_world_end = end;
+  moving_ = true;
 }
 
 void PbrtParser::object_directive(const PbrtToken& t) {
@@ -76,7 +111,7 @@ void PbrtParser::object_directive(const PbrtToken& t) {
   if (object_)
     t.loc.fail("ObjectInstance \"" + name + "\" inside the definition begun at " + object_->str() +
                " (nested instancing is not supported)");
-  instances_.push_back({name, world_from_pbrt_ * gs_.ctm, t.loc});
+  instances_.push_back({name, world_from_pbrt_ * static_ctm(t, "an instance"), t.loc});
 }
 
 void PbrtParser::add_material(const std::string& name, PbrtEntity e) {
@@ -143,7 +178,8 @@ void PbrtParser::light(const PbrtToken& t) {
   require_world(t, true);
   PbrtEntity e = entity(t);
   std::optional<nlohmann::json> l =
-      map_pbrt_light(e, world_from_pbrt_ * gs_.ctm, {sources_.back().dir, base_dir_}, warnings());
+      map_pbrt_light(e, world_from_pbrt_ * static_ctm(t, "a LightSource"),
+                     {sources_.back().dir, base_dir_}, warnings());
   e.params.report_unused(warnings(), e.what("LightSource"));
   if (l) {
     scene_.lights.emplace_back(*l, e.loc.str(), "");
@@ -158,6 +194,12 @@ void PbrtParser::finish() {
   if (!stack_.empty())
     pbrt_warn(warnings(), stack_.back().loc, "AttributeBegin without AttributeEnd at the end");
   if (object_) object_->fail("ObjectBegin without ObjectEnd");
+  // The shutter matters only when something moves; a static scene keeps a camera without one.
+  if (!moving_ && scene_.camera.json().contains("shutter")) {
+    nlohmann::json cam = scene_.camera.json();
+    cam.erase("shutter");
+    scene_.camera = SceneParams(std::move(cam), scene_.camera.file(), scene_.camera.path());
+  }
   // Named materials may be defined after their first use (pbrt resolves them at the end).
   for (const auto& [name, loc] : referenced_)
     if (!material_json_.count(name)) loc.fail("NamedMaterial: unknown material \"" + name + "\"");

@@ -1,7 +1,10 @@
 #include "penumbra/render/camera/pinhole_camera.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
+#include <vector>
 
 #include "penumbra/core/error.h"
 
@@ -14,12 +17,26 @@ PinholeCamera::PinholeCamera(const SceneParams& params, int width, int height) {
   const float vfov = params.get_float("vfov", 45.0f);
   if (!(vfov > 0.0f && vfov < 180.0f)) params.fail("vfov", "must lie in (0, 180) degrees");
   shutter_ = Shutter::read(params);
+  std::optional<std::array<double, 4>> window;
+  if (const nlohmann::json* j = params.get_json("screen_window")) {
+    std::vector<double> w;
+    if (j->is_array())
+      for (const nlohmann::json& v : *j)
+        if (v.is_number() && std::abs(v.get<double>()) <= 1e6) w.push_back(v.get<double>());
+    if (w.size() != 4 || j->size() != 4)
+      params.fail("screen_window", "must be four numbers [x0, x1, y0, y1] within ±1e6");
+    if (!(w[0] < w[1] && w[2] < w[3]))
+      params.fail("screen_window", "must have x0 < x1 and y0 < y1");
+    window = std::array<double, 4>{w[0], w[1], w[2], w[3]};
+  }
   params.check_all_used();
   try {
     init(position, target, up, vfov, width, height);
   } catch (const Error& e) {
     params.fail("look_at", e.what());
   }
+  if (window)
+    set_window(static_cast<float>(std::tan(double(vfov) * std::numbers::pi / 360.0)), *window);
 }
 
 PinholeCamera::PinholeCamera(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width,
@@ -35,15 +52,26 @@ void PinholeCamera::init(Vec3 position, Vec3 target, Vec3 up, float vfov_deg, in
   right_ = normalize(to_world.vector({1, 0, 0}));
   up_ = normalize(to_world.vector({0, 1, 0}));
   forward_ = normalize(to_world.vector({0, 0, 1}));
-  tan_half_ = static_cast<float>(std::tan(double(vfov_deg) * std::numbers::pi / 360.0));
-  aspect_ = float(width) / float(height);
+  const float tan_half = static_cast<float>(std::tan(double(vfov_deg) * std::numbers::pi / 360.0));
+  const float aspect = float(width) / float(height);
+  kx_ = tan_half * aspect;
+  ky_ = tan_half;
+  ox_ = oy_ = 0.0f;
   inv_w_ = 1.0f / float(width);
   inv_h_ = 1.0f / float(height);
 }
 
+void PinholeCamera::set_window(float tan_half, const std::array<double, 4>& w) {
+  kx_ = static_cast<float>(double(tan_half) * 0.5 * (w[1] - w[0]));
+  ox_ = static_cast<float>(double(tan_half) * 0.5 * (w[1] + w[0]));
+  ky_ = static_cast<float>(double(tan_half) * 0.5 * (w[3] - w[2]));
+  oy_ = static_cast<float>(double(tan_half) * 0.5 * (w[3] + w[2]));
+}
+
 Vec3 PinholeCamera::camera_direction(Vec2 film) const {
-  return {tan_half_ * aspect_ * (2.0f * film.x * inv_w_ - 1.0f),
-          tan_half_ * (1.0f - 2.0f * film.y * inv_h_), 1.0f};
+  // With the default window (ox_ = oy_ = 0) this is t a (2 sx/W - 1), t (1 - 2 sy/H).
+  return {kx_ * (2.0f * film.x * inv_w_ - 1.0f) + ox_, ky_ * (1.0f - 2.0f * film.y * inv_h_) + oy_,
+          1.0f};
 }
 
 Ray PinholeCamera::generate_ray(const CameraSample& s) const {

@@ -1,5 +1,7 @@
 #pragma once
 /// The pinhole camera: every ray starts at the eye.
+#include <array>
+
 #include "penumbra/core/transform.h"
 #include "penumbra/render/camera/camera.h"
 #include "penumbra/render/camera/shutter.h"
@@ -11,7 +13,11 @@ namespace penumbra {
 /// direction normalize(forward + t (2 sx/W - 1) a right + t (1 - 2 sy/H) up), t = tan(vfov/2),
 /// a = W/H, with right = forward x up: the convention of the Cornell box reference data.
 /// Parameters: position, look_at, up (default (0,1,0)), vfov (degrees, default 45), shutter
-/// ([open, close] in scene time, default [0, 0]: see Shutter).
+/// ([open, close] in scene time, default [0, 0]: see Shutter), screen_window ([x0, x1, y0, y1],
+/// the part of the image plane z = 1 that the film covers, in units of t: x from x0 t at the
+/// left edge to x1 t at the right, y from y1 t at the top to y0 t at the bottom; default
+/// [-a, a, -1, 1]; an off-centre window shifts the view without turning the camera, as pbrt's
+/// screenwindow and a view camera's lens shift do).
 class PinholeCamera final : public Camera {
  public:
   PinholeCamera(const SceneParams& params, int width, int height);
@@ -30,10 +36,13 @@ class PinholeCamera final : public Camera {
 
  private:
   void init(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width, int height);
+  /// Sets the film's window of the image plane: [x0, x1, y0, y1] in units of tan(vfov/2).
+  void set_window(float tan_half, const std::array<double, 4>& w);
 
   Vec3 eye_, forward_, right_, up_;
   Shutter shutter_;
-  float tan_half_ = 1, aspect_ = 1, inv_w_ = 1, inv_h_ = 1;
+  /// camera_direction's x = kx_ (2 sx/W - 1) + ox_, y = ky_ (1 - 2 sy/H) + oy_.
+  float kx_ = 1, ox_ = 0, ky_ = 1, oy_ = 0, inv_w_ = 1, inv_h_ = 1;
 };
 
 }  // namespace penumbra
