@@ -3,6 +3,7 @@
 /// same file through a pbrt `plymesh` scene (the pbrt layer's own cost). Files are generated in
 /// a temporary folder; timings are for comparison within one run.
 #include <benchmark/benchmark.h>
+#include <cmath>
 
 #include <unistd.h>
 
@@ -79,6 +80,34 @@ const std::string& ply_file() {
   return path;
 }
 
+/// A smooth height field of 708 x 708 = 501,264 quads (binary little-endian; 1,002,528
+/// triangles): PLY polygons go through the polygon triangulator (its convexity test, then the
+/// fan). (grid()'s quads are far from planar, their heights jump by 35 cells.)
+const std::string& quad_ply_file() {
+  static const std::string path = [] {
+    const int n = 708;
+    TriangleMesh m = grid(n);
+    for (Vec3& p : m.positions)
+      p.y = 0.05f * std::sin(6.2831853f * p.x) * std::cos(6.2831853f * p.z);
+    std::string s = "ply\nformat binary_little_endian 1.0\nelement vertex " +
+                    std::to_string(m.positions.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nelement face " +
+                    std::to_string(n * n) +
+                    "\nproperty list uchar int vertex_indices\nend_header\n";
+    for (Vec3 p : m.positions) s.append(reinterpret_cast<const char*>(&p), sizeof p);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int32_t a = j * (n + 1) + i, quad[4] = {a, a + n + 1, a + n + 2, a + 1};
+        s += char(4);
+        s.append(reinterpret_cast<const char*>(quad), sizeof quad);
+      }
+    const std::string p = (folder() / "quads.ply").string();
+    std::ofstream(p, std::ios::binary) << s;
+    return p;
+  }();
+  return path;
+}
+
 void BM_PbrtTextTriangles(benchmark::State& state) {
   const std::string& path = text_scene();
   for (auto _ : state) benchmark::DoNotOptimize(load_scene(path));
@@ -92,6 +121,13 @@ void BM_PlyAlone1M(benchmark::State& state) {
   state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(fs::file_size(path)));
 }
 BENCHMARK(BM_PlyAlone1M)->Unit(benchmark::kMillisecond);
+
+void BM_PlyQuads1M(benchmark::State& state) {
+  const std::string& path = quad_ply_file();
+  for (auto _ : state) benchmark::DoNotOptimize(read_ply(path));
+  state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(fs::file_size(path)));
+}
+BENCHMARK(BM_PlyQuads1M)->Unit(benchmark::kMillisecond);
 
 void BM_PbrtPlymesh1M(benchmark::State& state) {
   ply_file();

@@ -14,7 +14,7 @@ TriangleMesh read_mesh(const std::string& path, std::vector<std::string>* warnin
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == ".obj") return read_obj(path, warnings);
-  if (ext == ".ply") return read_ply(path);
+  if (ext == ".ply") return read_ply(path, warnings);
   throw InputError(path, "", "unsupported mesh format '" + ext + "' (expected one of: .obj, .ply)");
 }
 

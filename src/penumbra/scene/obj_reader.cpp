@@ -15,13 +15,12 @@
 #include "penumbra/core/text_escape.h"
 #include "penumbra/geometry/polygon_triangulator.h"
 #include "penumbra/scene/mesh_reader.h"
+#include "penumbra/scene/mesh_warnings.h"
 
 namespace penumbra {
 namespace {
 
 constexpr uint32_t kNone = std::numeric_limits<uint32_t>::max();
-/// Warnings listed per file; the others are only counted, so a hostile file cannot flood stderr.
-constexpr size_t kMaxWarnings = 10;
 
 /// One face corner: 0-based indices into the file's v, vt and vn lists (kNone when absent).
 struct Corner {
@@ -126,7 +125,7 @@ class CornerTable {
 class ObjParser {
  public:
   ObjParser(std::string_view text, const std::string& name, std::vector<std::string>* warnings)
-      : text_(text), name_(name), warnings_(warnings) {}
+      : text_(text), name_(name), warnings_(warnings, name) {}
 
   TriangleMesh parse() {
     // Text only: name binary data and UTF-16 rather than quoting their bytes as statements.
@@ -143,11 +142,7 @@ class ObjParser {
       if (!keyword.empty()) parse_statement(keyword, tokens);
       p = eol == end ? end : eol + 1;
     }
-    if (warnings_ && warning_count_ > kMaxWarnings) {
-      warnings_->push_back(fmt::format("{}: {} more warnings like these (the first {} are listed)",
-                                       escape_for_message(name_, SIZE_MAX),
-                                       warning_count_ - kMaxWarnings, kMaxWarnings));
-    }
+    warnings_.finish();
     return build();
   }
 
@@ -222,60 +217,7 @@ class ObjParser {
     triangles_.clear();
     const PolygonReport report = triangulator_.triangulate(points_, triangles_);
     for (const uint32_t i : triangles_) corners_.push_back(face_[i]);
-    if (report.any()) warn_face(report);
-  }
-
-  /// Warns about what triangulating the current face found wrong with it.
-  void warn_face(const PolygonReport& r) {
-    if (!warnings_) return;
-    if (warning_count_ >= kMaxWarnings) {  // counted only: no message is built
-      warning_count_ += size_t{r.no_area} + r.non_planar() + r.crossing + (r.stuck_vertices > 0) +
-                        r.too_many_vertices;
-      return;
-    }
-    const size_t n = face_.size();
-    const std::string face = fmt::format("face of {} vertices ", n);
-    if (r.no_area) {
-      warn(
-          "{}encloses no area (its vertices are collinear or coincide, or it winds "
-          "both ways equally); kept as {} degenerate triangles",
-          face, n - 2);
-    }
-    if (r.non_planar()) {
-      warn(
-          "{}is not planar (a vertex is {:.2g} of its size from its plane); "
-          "triangulated anyway",
-          face, r.off_plane);
-    }
-    if (r.crossing) {
-      const size_t e = r.crossing_edges[0], f = r.crossing_edges[1];
-      warn(
-          "{}intersects itself (its edges from corner {} to {} and from {} to {} "
-          "cross); triangulated anyway, its triangles may overlap",
-          face, e + 1, (e + 1) % n + 1, f + 1, (f + 1) % n + 1);
-    }
-    if (r.stuck_vertices > 0) {
-      warn(
-          "{}could not be ear-clipped to the end (it touches or crosses itself); its "
-          "last {} vertices were fan-triangulated",
-          face, r.stuck_vertices);
-    }
-    if (r.too_many_vertices) {
-      warn(
-          "{}is concave and has more than {} vertices, the most that are ear-clipped; "
-          "fan-triangulated, so its triangles may cover area outside it",
-          face, kMaxEarClipVertices);
-    }
-  }
-
-  /// Lists the warning "FILE:line N: problem" (the problem formatted by fmt) if fewer than
-  /// kMaxWarnings are listed, else counts it.
-  template <class... Args>
-  void warn(fmt::format_string<Args...> problem, Args&&... args) {
-    if (++warning_count_ <= kMaxWarnings) {
-      warnings_->push_back(fmt::format("{}:line {}: ", escape_for_message(name_, SIZE_MAX), line_) +
-                           fmt::format(problem, std::forward<Args>(args)...));
-    }
+    if (report.any()) warnings_.polygon("line " + std::to_string(line_), report, face_.size());
   }
 
   /// Converts a 1-based or negative (relative) OBJ index into a 0-based index below `count`.
@@ -338,8 +280,7 @@ class ObjParser {
 
   std::string_view text_;
   const std::string& name_;
-  std::vector<std::string>* warnings_;  // null: warnings are dropped
-  size_t warning_count_ = 0;
+  MeshWarnings warnings_;
   size_t line_ = 0;
   std::vector<Vec3> positions_;
   std::vector<Vec3> normals_;

@@ -170,14 +170,16 @@ std::vector<ShapeDesc> loop_subdiv(const PbrtEntity& e, const PbrtShapeContext& 
   return out;
 }
 
-std::vector<ShapeDesc> ply_mesh(const PbrtEntity& e, const PbrtShapeContext& ctx) {
+std::vector<ShapeDesc> ply_mesh(const PbrtEntity& e, const PbrtShapeContext& ctx,
+                                std::vector<std::string>& warnings) {
   const std::string name = e.params.get_string("filename", "");
   if (name.empty()) e.loc.fail("Shape \"plymesh\" needs \"string filename\"");
   const std::string path = pbrt_resolve(name, ctx.search_dirs);
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) e.loc.fail("PLY file not found: " + path);
-  TriangleMesh mesh =
-      path.ends_with(".gz") ? parse_ply(pbrt_read_file(path, e.loc), path) : read_ply(path);
+  TriangleMesh mesh = path.ends_with(".gz")
+                          ? parse_ply(pbrt_read_file(path, e.loc), path, &warnings)
+                          : read_ply(path, &warnings);
   if (mesh.triangle_count() == 0) e.loc.fail("PLY file has no faces: " + path);
   orient(mesh, ctx.reverse_orientation);
   std::vector<ShapeDesc> out;
@@ -273,7 +275,7 @@ std::vector<ShapeDesc> map_pbrt_shape(const PbrtEntity& e, const PbrtShapeContex
     pbrt_warn(warnings, e.loc, "\"alpha\" (cut-outs) is not supported; the shape is opaque");
   if (e.type == "trianglemesh") return triangle_mesh(e, ctx);
   if (e.type == "bilinearmesh") return bilinear_mesh(e, ctx, warnings);
-  if (e.type == "plymesh") return ply_mesh(e, ctx);
+  if (e.type == "plymesh") return ply_mesh(e, ctx, warnings);
   if (e.type == "sphere") return sphere(e, ctx, warnings);
   if (e.type == "disk") return disk(e, ctx, warnings);
   if (e.type == "loopsubdiv") return loop_subdiv(e, ctx, warnings);

@@ -13,7 +13,9 @@
 
 #include "penumbra/core/error.h"
 #include "penumbra/core/text_escape.h"
+#include "penumbra/geometry/polygon_triangulator.h"
 #include "penumbra/scene/mesh_reader.h"
+#include "penumbra/scene/mesh_warnings.h"
 #include "penumbra/scene/ply_header.h"
 
 namespace penumbra {
@@ -40,6 +42,7 @@ std::string item_context(const PlyElement* e, uint64_t item) {
 /// Reads binary values with bounds checks; places are byte offsets from the start of the file.
 class BinaryCursor {
  public:
+  static constexpr const char* kPlaceKind = "byte";
   BinaryCursor(std::string_view data, size_t offset, bool swap, const std::string& name)
       : begin_(reinterpret_cast<const unsigned char*>(data.data())),
         p_(begin_ + offset),
@@ -146,6 +149,7 @@ bool parse_number(std::string_view token, T& out) {
 /// Reads whitespace-separated ascii values; places are line numbers.
 class AsciiCursor {
  public:
+  static constexpr const char* kPlaceKind = "line";
   AsciiCursor(std::string_view data, size_t offset, size_t line, const std::string& name)
       : p_(data.data() + offset), end_(data.data() + data.size()), line_(line), name_(name) {}
 
@@ -272,29 +276,80 @@ uint32_t read_index(Cursor& c, PlyType t, uint64_t vertex_count) {
   return static_cast<uint32_t>(index);
 }
 
+/// Triangulates polygons as they are read (the OBJ reader's PolygonTriangulator: the fan for
+/// convex ones, ear clipping for the others), with the warnings of what it finds. Polygons read
+/// before the vertices (a face element first) get the fan at first and are triangulated again
+/// when the vertices are known (finish()).
+class FaceTriangulator {
+ public:
+  FaceTriangulator(TriangleMesh& mesh, bool vertices_known, MeshWarnings& warnings)
+      : mesh_(mesh), vertices_known_(vertices_known), warnings_(warnings) {}
+
+  /// Appends the triangles of the polygon `poly` (at least 3 vertex indices) read at `place`.
+  void add(const std::vector<uint32_t>& poly, const std::string& place_kind, size_t place) {
+    const size_t offset = mesh_.indices.size();
+    for (size_t k = 2; k < poly.size(); ++k)  // the fan (0, k - 1, k)
+      mesh_.indices.insert(mesh_.indices.end(), {poly[0], poly[k - 1], poly[k]});
+    if (poly.size() == 3) return;
+    if (vertices_known_)
+      triangulate(offset, poly.size(), place_kind, place);
+    else
+      pending_.push_back({offset, poly.size(), place});
+  }
+
+  /// Triangulates the polygons read before the vertices.
+  void finish(const std::string& place_kind) {
+    for (const Pending& p : pending_) triangulate(p.offset, p.n, place_kind, p.place);
+    pending_.clear();
+  }
+
+ private:
+  struct Pending {
+    size_t offset, n, place;
+  };
+
+  // The polygon is read back from its fan: (v0, v1, v2), (v0, v2, v3), ...; its n - 2 triangles
+  // replace the fan's in place, so the primitive ids stay in file order.
+  void triangulate(size_t offset, size_t n, const std::string& place_kind, size_t place) {
+    uint32_t* fan = mesh_.indices.data() + offset;
+    corners_.assign({fan[0], fan[1]});
+    points_.assign({mesh_.positions[fan[0]], mesh_.positions[fan[1]]});
+    for (size_t t = 0; t + 2 < n; ++t) {
+      corners_.push_back(fan[3 * t + 2]);
+      points_.push_back(mesh_.positions[fan[3 * t + 2]]);
+    }
+    triangles_.clear();
+    const PolygonReport report = triangulator_.triangulate(points_, triangles_);
+    for (size_t i = 0; i < triangles_.size(); ++i) fan[i] = corners_[triangles_[i]];
+    if (report.any()) warnings_.polygon(place_kind + " " + std::to_string(place), report, n);
+  }
+
+  TriangleMesh& mesh_;
+  bool vertices_known_;
+  MeshWarnings& warnings_;
+  PolygonTriangulator triangulator_;
+  std::vector<uint32_t> corners_, triangles_;
+  std::vector<Vec3> points_;
+  std::vector<Pending> pending_;
+};
+
 template <class Cursor>
-void read_faces(Cursor& c, const PlyHeader& h, TriangleMesh& mesh) {
+void read_faces(Cursor& c, const PlyHeader& h, TriangleMesh& mesh, FaceTriangulator& faces) {
   const PlyElement& e = h.elements[h.face];
   const uint64_t vertex_count = h.elements[h.vertex].count;
   // Room for one triangle per face, bounded by the bytes left (a face has at least one index).
   mesh.indices.reserve(3 * std::min<uint64_t>(e.count, c.left()));
+  std::vector<uint32_t> poly;
   for (uint64_t i = 0; i < e.count; ++i) {
     c.set_item(e, i);
     for (const PlyProperty& p : e.properties) {
       if (p.slot == kIndices) {
-        // Fan triangulation (0,1,2), (0,2,3), ... without storing the polygon.
         const size_t at = c.mark();
         const int64_t n = c.count(p.count_type);
         if (n < 3) c.fail(at, "face with " + std::to_string(n) + " vertices (needs at least 3)");
-        const uint32_t first = read_index(c, p.type, vertex_count);
-        uint32_t previous = read_index(c, p.type, vertex_count);
-        for (int64_t k = 2; k < n; ++k) {
-          const uint32_t current = read_index(c, p.type, vertex_count);
-          mesh.indices.push_back(first);
-          mesh.indices.push_back(previous);
-          mesh.indices.push_back(current);
-          previous = current;
-        }
+        poly.clear();
+        for (int64_t k = 0; k < n; ++k) poly.push_back(read_index(c, p.type, vertex_count));
+        faces.add(poly, Cursor::kPlaceKind, at);
       } else if (p.is_list) {
         c.skip_list(p);
       } else {
@@ -305,13 +360,14 @@ void read_faces(Cursor& c, const PlyHeader& h, TriangleMesh& mesh) {
 }
 
 template <class Cursor>
-void read_body(Cursor& c, const PlyHeader& h, TriangleMesh& mesh) {
+void read_body(Cursor& c, const PlyHeader& h, TriangleMesh& mesh, MeshWarnings& warnings) {
+  FaceTriangulator faces(mesh, h.vertex < h.face, warnings);
   for (size_t k = 0; k < h.elements.size(); ++k) {
     const PlyElement& e = h.elements[k];
     if (k == h.vertex) {
       read_vertices(c, h, mesh);
     } else if (k == h.face) {
-      read_faces(c, h, mesh);
+      read_faces(c, h, mesh, faces);
     } else if (!e.properties.empty()) {
       for (uint64_t i = 0; i < e.count; ++i) {
         c.set_item(e, i);
@@ -320,28 +376,32 @@ void read_body(Cursor& c, const PlyHeader& h, TriangleMesh& mesh) {
     }
   }
   c.finish();
+  faces.finish(Cursor::kPlaceKind);
+  warnings.finish();
 }
 
 }  // namespace
 
-TriangleMesh read_ply(const std::string& path) {
+TriangleMesh read_ply(const std::string& path, std::vector<std::string>* warnings) {
   const std::string data = read_file_contents(path);
-  return parse_ply(data, path);
+  return parse_ply(data, path, warnings);
 }
 
-TriangleMesh parse_ply(std::string_view data, const std::string& name) {
+TriangleMesh parse_ply(std::string_view data, const std::string& name,
+                       std::vector<std::string>* warnings) {
+  MeshWarnings mesh_warnings(warnings, name);
   PlyHeader header = parse_header(data, name);
   resolve_layout(header, name);
   check_sizes(header, data.size(), name);
   TriangleMesh mesh;
   if (header.format == PlyFormat::kAscii) {
     AsciiCursor cursor(data, header.body_offset, header.end_line + 1, name);
-    read_body(cursor, header, mesh);
+    read_body(cursor, header, mesh, mesh_warnings);
   } else {
     const bool file_big = header.format == PlyFormat::kBinaryBigEndian;
     const bool swap = file_big != (std::endian::native == std::endian::big);
     BinaryCursor cursor(data, header.body_offset, swap, name);
-    read_body(cursor, header, mesh);
+    read_body(cursor, header, mesh, mesh_warnings);
   }
   return mesh;
 }
