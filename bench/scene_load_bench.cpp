@@ -1,12 +1,12 @@
 /// Google Benchmark: how fast scenes load. The pbrt-v4 reader on a text `trianglemesh` of 200k
 /// triangles (bytes per second), and a 1M-triangle mesh read as a PLY file alone next to the
-/// same file through a pbrt `plymesh` scene (the pbrt layer's own cost). Files are generated in
-/// a temporary folder; timings are for comparison within one run.
+/// same file through a pbrt `plymesh` scene (the pbrt layer's own cost), and a quad PLY (the
+/// polygon triangulator's cost). Files are generated in a temporary folder; timings are for
+/// comparison within one run.
 #include <benchmark/benchmark.h>
-#include <cmath>
-
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
