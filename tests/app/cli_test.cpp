@@ -123,7 +123,8 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
       ASSERT_EQ(row["runs"].size(), 1u) << row.dump();
       const auto& run = row["runs"][0];
       EXPECT_EQ(run["threads"], 1);
-      for (const char* key : {"primary_mrays", "incoherent_mrays", "occlusion_mrays"})
+      for (const char* key : {"primary_mrays", "incoherent_mrays", "occlusion_mrays",
+                              "bounce_mrays", "shadow_mrays"})
         EXPECT_GT(run[key].get<double>(), 0.0) << key;
     }
     EXPECT_EQ(structures, 2u);

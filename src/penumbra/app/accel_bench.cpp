@@ -21,6 +21,7 @@
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
+#include "penumbra/render/camera/camera_registry.h"
 #include "penumbra/scene/mesh_reader.h"
 #include "penumbra/scene/scene_loader.h"
 
@@ -38,6 +39,7 @@ constexpr uint64_t kRaySeed = 0x5eed'acce'1be7ull;
 /// The ray sets, with Embree's incoherent closest hits when it ran.
 struct RaySets {
   std::vector<Ray> primary, incoherent;
+  PathRays path;  ///< a path tracer's bounce and shadow rays from the primary hits
   std::vector<Hit> reference;
 };
 
@@ -153,10 +155,17 @@ BenchRates run_once(const RaySets& rays, int threads, const I& intersect, const 
   const auto embree_occlusion = [&](const Ray& r, size_t) { (*embree_occluded)(r); };
   rates.occlusion = mrays(rays.incoherent.size(), timed(rays.incoherent, occlusion,
                                                         pair ? &embree_occlusion : nullptr, eo));
+  double eb = 0, es = 0;
+  rates.bounce = mrays(rays.path.bounce.size(),
+                       timed(rays.path.bounce, primary, pair ? &embree_primary : nullptr, eb));
+  rates.shadow = mrays(rays.path.shadow.size(),
+                       timed(rays.path.shadow, occlusion, pair ? &embree_occlusion : nullptr, es));
   if (pair) {
     rates.primary_vs_embree = rates.primary / mrays(rays.primary.size(), ep);
     rates.incoherent_vs_embree = rates.incoherent / mrays(rays.incoherent.size(), ei);
     rates.occlusion_vs_embree = rates.occlusion / mrays(rays.incoherent.size(), eo);
+    rates.bounce_vs_embree = rates.bounce / mrays(rays.path.bounce.size(), eb);
+    rates.shadow_vs_embree = rates.shadow / mrays(rays.path.shadow.size(), es);
   }
   return rates;
 }
@@ -177,21 +186,25 @@ void measure(BenchRow& row, const RaySets& rays, const std::vector<int>& threads
              const EO* embree_occluded, std::vector<Hit>* keep) {
   std::vector<Hit> hits(rays.incoherent.size());
   for (const int t : threads) {
-    std::vector<double> p, i, o, pr, ir, orr;
+    std::vector<double> p, i, o, b, sh, pr, ir, orr, br, sr;
     for (int k = 0; k < repeat; ++k) {
       const BenchRates r =
           run_once(rays, t, intersect, occluded, hits, embree_intersect, embree_occluded);
       p.push_back(r.primary), i.push_back(r.incoherent), o.push_back(r.occlusion);
+      b.push_back(r.bounce), sh.push_back(r.shadow);
       if (r.incoherent_vs_embree)
         pr.push_back(*r.primary_vs_embree), ir.push_back(*r.incoherent_vs_embree),
-            orr.push_back(*r.occlusion_vs_embree);
+            orr.push_back(*r.occlusion_vs_embree), br.push_back(*r.bounce_vs_embree),
+            sr.push_back(*r.shadow_vs_embree);
     }
     BenchRates rates;
     rates.threads = t;
     rates.primary = median(p), rates.incoherent = median(i), rates.occlusion = median(o);
+    rates.bounce = median(b), rates.shadow = median(sh);
     if (!ir.empty())
       rates.primary_vs_embree = median(pr), rates.incoherent_vs_embree = median(ir),
-      rates.occlusion_vs_embree = median(orr);
+      rates.occlusion_vs_embree = median(orr), rates.bounce_vs_embree = median(br),
+      rates.shadow_vs_embree = median(sr);
     row.rates.push_back(rates);
   }
   if (!rays.reference.empty()) {
@@ -232,17 +245,36 @@ void add_accel_bench_command(CLI::App& app) {
   cmd->callback([args] { run_accel_bench(*args); });
 }
 
+/// The rays of the scene's camera through the pixel centres of an image `width` pixels wide of the
+/// scene's aspect ratio (lens centre, time 0).
+std::vector<Ray> camera_rays(const SceneDesc& desc, int width) {
+  const int height = std::clamp(
+      int(std::lround(double(width) * desc.render.height / desc.render.width)), 1, 4 * width);
+  const std::unique_ptr<Camera> camera = make_camera(desc.camera, width, height);
+  std::vector<Ray> rays(size_t(width) * size_t(height));
+  parallel_for(size_t(height), [&](size_t y) {
+    for (int x = 0; x < width; ++x)
+      rays[y * size_t(width) + size_t(x)] =
+          camera->generate_ray({{float(x) + 0.5f, float(y) + 0.5f}, {0.5f, 0.5f}, 0.0f});
+  });
+  return rays;
+}
+
 /// The triangles of a scene in world space: meshes transformed, parallelograms as two triangles.
-/// Spheres are left out (the benchmark and Embree's row measure triangles), with a note.
-TriangleMesh scene_triangles(const SceneDesc& desc) {
+/// Spheres are left out (the benchmark and Embree's row measure triangles), with a note. The
+/// triangles of emissive shapes are listed in `emitters`.
+TriangleMesh scene_triangles(const SceneDesc& desc, std::vector<uint32_t>& emitters) {
   TriangleMesh out;
   size_t spheres = 0;
-  auto add = [&out](Vec3 a, Vec3 b, Vec3 c) {
+  bool emissive = false;
+  auto add = [&](Vec3 a, Vec3 b, Vec3 c) {
     const auto base = static_cast<uint32_t>(out.positions.size());
+    if (emissive) emitters.push_back(base / 3);
     out.positions.insert(out.positions.end(), {a, b, c});
     out.indices.insert(out.indices.end(), {base, base + 1, base + 2});
   };
   for (const ShapeDesc& shape : desc.shapes) {
+    emissive = shape.emission && !shape.emission->is_black();
     const Transform& m = shape.to_world;
     if (const auto* mesh = std::get_if<TriangleMesh>(&shape.geometry)) {
       for (size_t t = 0; t < mesh->triangle_count(); ++t)
@@ -275,11 +307,14 @@ void run_accel_bench(const AccelBenchArgs& args) {
   const bool is_scene =
       args.input.size() >= 5 && args.input.substr(args.input.size() - 5) == ".json";
   std::vector<std::string> warnings;
+  std::vector<uint32_t> emitters;  // a scene's emissive triangles: the shadow rays' light
+  std::vector<Ray> scene_camera;   // a scene's camera rays: where the path tracer's rays start
   const TriangleMesh mesh = [&] {
     if (!is_scene) return read_mesh(args.input, &warnings);
     const SceneDesc desc = load_scene(args.input);
     warnings = desc.warnings;
-    return scene_triangles(desc);
+    scene_camera = camera_rays(desc, kImageSide);
+    return scene_triangles(desc, emitters);
   }();
   print_warnings(warnings);
   check_mesh_input(mesh, args.input);
@@ -308,10 +343,23 @@ void run_accel_bench(const AccelBenchArgs& args) {
   RaySets rays;
   rays.primary = primary_rays(prims.bounds(), kImageSide, kImageSide);
   rays.incoherent = incoherent_rays(prims.bounds(), args.rays, kRaySeed);
+  {
+    // The path tracer's rays start at the primary hits, found with the default BVH.
+    const std::unique_ptr<Accelerator> bvh = make_accelerator("bvh");
+    bvh->build(prims);
+    const std::vector<Ray>& camera = scene_camera.empty() ? rays.primary : scene_camera;
+    std::vector<Hit> hits(camera.size());
+    parallel_for(hits.size(), [&](size_t i) { bvh->intersect(camera[i], hits[i]); });
+    rays.path = path_rays(prims, camera, hits, kRaySeed + 1, emitters);
+  }
   fmt::print(
       "rays: {} primary ({}x{} pinhole), {} incoherent (closest hit), the same {} as "
-      "occlusion queries with tmax = infinity\n",
-      rays.primary.size(), kImageSide, kImageSide, rays.incoherent.size(), rays.incoherent.size());
+      "occlusion queries with tmax = infinity; {} diffuse bounces and {} shadow rays (to {}) from "
+      "the hits of {}\n",
+      rays.primary.size(), kImageSide, kImageSide, rays.incoherent.size(), rays.incoherent.size(),
+      rays.path.bounce.size(), rays.path.shadow.size(),
+      emitters.empty() ? "a square light above the mesh" : "the scene's emitters",
+      scene_camera.empty() ? "the primary rays" : "the scene camera's rays through pixel centres");
 
   // Each measurement sets its own thread limit: an enclosing one would cap it.
   limit.reset();

@@ -1,6 +1,5 @@
 #include "penumbra/app/accel_bench_table.h"
 
-
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -11,9 +10,9 @@ namespace penumbra::app {
 
 namespace {
 
-/// Width of a throughput column, and of a group of three with their separators.
+/// Width of a throughput column, and of a group of six with their separators.
 constexpr int kRateWidth = 8;
-constexpr int kGroupWidth = 4 * (kRateWidth + 1);
+constexpr int kGroupWidth = 6 * (kRateWidth + 1);
 
 std::string thread_label(int threads) {
   return fmt::format("{} thread{}", threads, threads == 1 ? "" : "s");
@@ -35,8 +34,9 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
                                                  "build ms", "MiB", "nodes", "depth", "refs/prim");
   for (const BenchRates& r : rows.front().rates) {
     titles += fmt::format("|{:^{}}", thread_label(r.threads) + ", Mrays/s", kGroupWidth);
-    names += fmt::format("|{:>{}} {:>{}} {:>{}} {:>{}} ", "primary", kRateWidth, "incoher.",
-                         kRateWidth, "occlus.", kRateWidth, "x embree", kRateWidth);
+    names += fmt::format("|{:>{}} {:>{}} {:>{}} {:>{}} {:>{}} {:>{}} ", "primary", kRateWidth,
+                         "incoher.", kRateWidth, "occlus.", kRateWidth, "bounce", kRateWidth,
+                         "shadow", kRateWidth, "x embree", kRateWidth);
   }
   fmt::print("{}|\n{}| {:>12}\n", titles, names, "vs embree");
   for (const BenchRow& r : rows) {
@@ -44,17 +44,29 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
                                    r.build_ms, double(r.bytes) / (1 << 20), or_dash(r.nodes, "{}"),
                                    or_dash(r.depth, "{}"), or_dash(r.refs_per_prim, "{:.2f}"));
     for (const BenchRates& t : r.rates)
-      line += fmt::format("|{:>{}.2f} {:>{}.2f} {:>{}.2f} {:>{}} ", t.primary, kRateWidth,
-                          t.incoherent, kRateWidth, t.occlusion, kRateWidth,
+      line += fmt::format("|{:>{}.2f} {:>{}.2f} {:>{}.2f} {:>{}.2f} {:>{}.2f} {:>{}} ", t.primary,
+                          kRateWidth, t.incoherent, kRateWidth, t.occlusion, kRateWidth, t.bounce,
+                          kRateWidth, t.shadow, kRateWidth,
                           or_dash(t.incoherent_vs_embree, "{:.2f}"), kRateWidth);
     const std::string cmp =
         r.mismatches ? fmt::format("{} ({} ties)", *r.mismatches, r.ties.value_or(0)) : "-";
     fmt::print("{}| {:>12}\n", line, cmp);
   }
+  // The other ratios to Embree, one line per structure and thread count.
+  for (const BenchRow& r : rows)
+    for (const BenchRates& t : r.rates)
+      if (t.primary_vs_embree)
+        fmt::print(
+            "{:<22} x embree at {}: primary {:.2f}, occlusion {:.2f}, bounce {:.2f}, "
+            "shadow {:.2f}\n",
+            r.accel, thread_label(t.threads), *t.primary_vs_embree, *t.occlusion_vs_embree,
+            *t.bounce_vs_embree, *t.shadow_vs_embree);
   fmt::print(
       "(build ms at {}; refs/prim: leaf references per triangle. Mrays/s, medians of {} run(s):\n"
       " primary = closest hits of the camera's rays, incoher. = closest hits of random rays,\n"
-      " occlus. = any hit of the same rays. x embree: incoherent throughput over Embree's, median\n"
+      " occlus. = any hit of the same rays, bounce = closest hits of one diffuse bounce from each\n"
+      " camera hit, shadow = any hit of a shadow ray from each camera hit to a square light above\n"
+      " the mesh. x embree: incoherent throughput over Embree's, median\n"
       " of runs that alternate with Embree's every 131,072 rays. 'vs embree': incoherent closest\n"
       " hits differing from Embree's, hit vs miss or t beyond 1e-4 relative; ties: same t,\n"
       " another triangle)\n",
@@ -70,11 +82,15 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
       nlohmann::json run = {{"threads", t.threads},
                             {"primary_mrays", t.primary},
                             {"incoherent_mrays", t.incoherent},
-                            {"occlusion_mrays", t.occlusion}};
+                            {"occlusion_mrays", t.occlusion},
+                            {"bounce_mrays", t.bounce},
+                            {"shadow_mrays", t.shadow}};
       if (t.incoherent_vs_embree)
         run["primary_vs_embree"] = *t.primary_vs_embree,
         run["incoherent_vs_embree"] = *t.incoherent_vs_embree,
-        run["occlusion_vs_embree"] = *t.occlusion_vs_embree;
+        run["occlusion_vs_embree"] = *t.occlusion_vs_embree,
+        run["bounce_vs_embree"] = *t.bounce_vs_embree,
+        run["shadow_vs_embree"] = *t.shadow_vs_embree;
       runs.push_back(run);
     }
     nlohmann::json o = {{"accel", r.accel},

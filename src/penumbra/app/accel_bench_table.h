@@ -14,8 +14,11 @@ struct BenchRates {
   double primary = 0;     ///< closest hits of the pinhole camera's rays
   double incoherent = 0;  ///< closest hits of random rays
   double occlusion = 0;   ///< any hit of the same random rays
+  double bounce = 0;      ///< closest hits of a path tracer's diffuse bounce rays (path_rays)
+  double shadow = 0;      ///< any hit of its shadow rays, tmax short of the light
   /// Median over paired runs of this rate / Embree's (absent without Embree, and for Embree).
-  std::optional<double> primary_vs_embree, incoherent_vs_embree, occlusion_vs_embree;
+  std::optional<double> primary_vs_embree, incoherent_vs_embree, occlusion_vs_embree,
+      bounce_vs_embree, shadow_vs_embree;
 };
 
 /// The measurements of one structure (or of Embree).
@@ -31,7 +34,8 @@ struct BenchRow {
 };
 
 /// Prints the table: build ms (at `build_threads`), MiB, nodes, depth, refs/prim, then primary,
-/// incoherent and occlusion Mrays/s and the incoherent ratio to Embree for each thread count,
+/// incoherent, occlusion, bounce and shadow Mrays/s and the incoherent ratio to Embree for each
+/// thread count, then the ratios to Embree of the other four,
 /// then the comparison of hits with Embree's; `repeat` runs gave each median.
 void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat);
 
