@@ -1,9 +1,11 @@
 #include "penumbra/app/accel_bench.h"
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -227,7 +229,8 @@ void add_accel_bench_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "accel-bench", "Build acceleration structures over a mesh and measure ray throughput");
   cmd->add_option("input", args->input,
-                  "Mesh (.obj, .ply) or scene (.json: its meshes and quads as triangles)")
+                  "Mesh (.obj, .ply) or scene (.json, .pbrt, .gltf, .glb: its meshes and quads as "
+                  "triangles)")
       ->required();
   cmd->add_option("--accel", args->accels,
                   "Structures NAME[:params],... or 'all' (default; brute is left out of 'all' "
@@ -304,8 +307,10 @@ void run_accel_bench(const AccelBenchArgs& args) {
   // Loading, ray generation and builds run on the largest thread count.
   std::optional<ThreadLimit> limit(std::in_place, build_threads);
   const Timer load_timer;
-  const bool is_scene =
-      args.input.size() >= 5 && args.input.substr(args.input.size() - 5) == ".json";
+  // Scene files (JSON, pbrt, glTF) as scenes; everything else through the mesh reader.
+  std::string ext = std::filesystem::path(args.input).extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool is_scene = ext == ".json" || ext == ".pbrt" || ext == ".gltf" || ext == ".glb";
   std::vector<std::string> warnings;
   std::vector<uint32_t> emitters;  // a scene's emissive triangles: the shadow rays' light
   std::vector<Ray> scene_camera;   // a scene's camera rays: where the path tracer's rays start
