@@ -1,0 +1,113 @@
+/// Build time per triangle of every registered structure on the benchmark terrain
+/// (bench/terrain.h) from 10^4 to 10^7 triangles: the O(N log N) curve. Not a Google Benchmark
+/// loop: each structure builds at each size (the median of 3 builds below 10^6 triangles, one
+/// above) until a build takes longer than `--budget` seconds (default 20); the next size would
+/// take about ten times as long. Prints one table and, with --json FILE, writes the rows.
+///   build/build_scaling [--threads N] [--budget S] [--accel a,b,...] [--json FILE]
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "penumbra/accel/registry.h"
+#include "penumbra/core/parallel.h"
+#include "penumbra/core/timer.h"
+#include "terrain.h"
+
+namespace {
+
+using namespace penumbra;
+
+struct Row {
+  std::string accel;
+  size_t triangles;
+  double ms;
+};
+
+// Vertices per side giving about 10^4, 10^5, 10^6 and 10^7 triangles.
+constexpr int kSides[] = {72, 225, 708, 2237};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  size_t start = 0;
+  while (start <= s.size()) {
+    const size_t comma = std::min(s.find(',', start), s.size());
+    if (comma > start) out.push_back(s.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int threads = 1;
+  double budget_s = 20;
+  std::string json, accels;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const bool more = i + 1 < argc;
+    if (a == "--threads" && more) {
+      threads = std::max(1, std::atoi(argv[++i]));
+    } else if (a == "--budget" && more) {
+      budget_s = std::atof(argv[++i]);
+    } else if (a == "--json" && more) {
+      json = argv[++i];
+    } else if (a == "--accel" && more) {
+      accels = argv[++i];
+    } else {
+      std::fprintf(stderr, "usage: %s [--threads N] [--budget S] [--accel a,b] [--json FILE]\n",
+                   argv[0]);
+      return 2;
+    }
+  }
+  std::vector<std::string> names;
+  if (accels.empty()) {
+    for (const auto& info : accelerator_list())
+      if (info.name != "brute") names.push_back(info.name);  // brute has no build to measure
+  } else {
+    names = split(accels);
+  }
+  const ThreadLimit limit(threads);
+  std::vector<Row> rows;
+  std::vector<bool> stopped(names.size(), false);
+  std::printf("terrain builds at %d thread(s); ns/tri and ns/(tri log2 N)\n", threads);
+  std::printf("%-14s %10s %10s %8s %12s\n", "accel", "triangles", "build ms", "ns/tri",
+              "ns/(t log N)");
+  for (const int side : kSides) {
+    PrimitiveSet prims;
+    prims.add_mesh(bench::terrain(side), Transform(), 0);
+    const size_t n = prims.size();
+    for (size_t k = 0; k < names.size(); ++k) {
+      if (stopped[k]) continue;
+      const int builds = n < 1'000'000 ? 3 : 1;
+      std::vector<double> ms;
+      for (int b = 0; b < builds; ++b) {
+        auto accel = make_accelerator(names[k]);
+        const Timer t;
+        accel->build(prims);
+        ms.push_back(t.elapsed_ms());
+      }
+      std::sort(ms.begin(), ms.end());
+      const double m = ms[ms.size() / 2], per = m * 1e6 / double(n);
+      std::printf("%-14s %10zu %10.1f %8.1f %12.2f\n", names[k].c_str(), n, m, per,
+                  per / std::log2(double(n)));
+      std::fflush(stdout);
+      rows.push_back({names[k], n, m});
+      if (m > budget_s * 1000) stopped[k] = true;
+    }
+  }
+  if (!json.empty()) {
+    std::ofstream out(json);
+    out << "[\n";
+    for (size_t i = 0; i < rows.size(); ++i)
+      out << "  {\"accel\": \"" << rows[i].accel << "\", \"triangles\": " << rows[i].triangles
+          << ", \"build_ms\": " << rows[i].ms << ", \"threads\": " << threads << "}"
+          << (i + 1 < rows.size() ? ",\n" : "\n");
+    out << "]\n";
+  }
+  return 0;
+}
