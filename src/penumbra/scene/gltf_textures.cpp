@@ -97,6 +97,7 @@ std::string GltfTextures::image(int index, const std::string& user,
     src_.fail(at, "an image needs a \"uri\" or a \"bufferView\"");
   }
   if (mime.empty()) mime = sniff_mime(bytes);
+  if (mime == "image/jpg") mime = "image/jpeg";  // a common misspelling among exporters
   if (mime != "image/png" && mime != "image/jpeg") {
     warnings.push_back(
         src_.message(at, (mime.empty() ? std::string("image of unknown type") : mime) +
