@@ -1,7 +1,8 @@
 /// Writes the JPEG seeds of fuzz/corpus/jpeg/: 8x8 and 17x9 images, baseline and progressive,
 /// colour (4:4:4 and 4:2:0) and greyscale, with and without restart markers, optimised Huffman
 /// tables. Build and run once:
-///   g++ -std=c++20 make_jpeg_seeds.cpp -ljpeg -o /tmp/jpeg_seeds && /tmp/jpeg_seeds fuzz/corpus/jpeg
+///   g++ -std=c++20 make_jpeg_seeds.cpp -ljpeg -o /tmp/jpeg_seeds && /tmp/jpeg_seeds
+///   fuzz/corpus/jpeg
 #include <cstdio>
 #include <cstdlib>
 
@@ -35,7 +36,8 @@ void write(const std::string& path, int w, int h, bool grey, bool progressive, b
   jpeg_start_compress(&c, TRUE);
   std::vector<unsigned char> row(size_t(w) * c.input_components);
   for (int y = 0; y < h; ++y) {
-    for (size_t i = 0; i < row.size(); ++i) row[i] = static_cast<unsigned char>((i * 37 + y * 91) & 255);
+    for (size_t i = 0; i < row.size(); ++i)
+      row[i] = static_cast<unsigned char>((i * 37 + y * 91) & 255);
     unsigned char* p = row.data();
     jpeg_write_scanlines(&c, &p, 1);
   }
