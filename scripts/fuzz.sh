@@ -14,7 +14,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
-TARGETS=(scene_json obj ply pbrt gltf gzip scene2d pfm png exr)
+TARGETS=(scene_json obj ply pbrt gltf gzip scene2d pfm png exr jpeg)
 targets=("$@")
 [[ ${#targets[@]} -eq 0 ]] && targets=("${TARGETS[@]}")
 build=${FUZZ_BUILD_DIR:-build-fuzzers}
@@ -23,7 +23,7 @@ jobs=${FUZZ_JOBS:-1}
 
 # Longest input per target: a few times the largest seed, small enough to keep runs fast.
 declare -A max_len=([scene_json]=8192 [obj]=4096 [ply]=4096 [pbrt]=8192 [gltf]=8192 [gzip]=4096
-  [scene2d]=4096 [pfm]=4096 [png]=8192 [exr]=8192)
+  [scene2d]=4096 [pfm]=4096 [png]=8192 [exr]=8192 [jpeg]=8192)
 
 if ! command -v clang++ >/dev/null ||
   ! echo 'extern "C" int LLVMFuzzerTestOneInput(const char*, long) { return 0; }' |

@@ -5,6 +5,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev libopenexr-dev libpng-dev
+  libjpeg62-turbo-dev   # image/jpeg.cpp: JPEG textures (glTF's usual image type)
   libtinygltf-dev   # header only: scene/gltf_model.cpp compiles the implementation
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev   # optional: only the accel-bench comparison row uses it

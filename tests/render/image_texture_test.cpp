@@ -82,7 +82,7 @@ TEST(ImageTexture, SceneFilesNameImagesRelativeToThemselves) {
     "materials": {
       "a": {"type": "diffuse", "albedo": {"type": "image", "file": "tex/grid.pfm", "wrap": "clamp"}},
       "b": {"type": "diffuse", "albedo": {"type": "image", "file": "tex/bright.pfm"}},
-      "c": {"type": "diffuse", "albedo": {"type": "image", "file": "tex/grid.pfm", "wrap": "mirror"}},
+      "c": {"type": "diffuse", "albedo": {"type": "image", "file": "tex/grid.pfm", "wrap": "spiral"}},
       "d": {"type": "diffuse", "albedo": {"type": "image", "file": "tex/none.pfm"}}},
     "shapes": []})");
   const SceneDesc desc = load_scene(dir.file("scene.json"));

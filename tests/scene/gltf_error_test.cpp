@@ -170,7 +170,7 @@ TEST(GltfError, ExternalBuffersOnlyFromTheFilesFolder) {
   fs::remove_all(dir);
 }
 
-TEST(GltfError, ImagesAreNeverRead) {
+TEST(GltfError, ImagesNoTextureUsesAreNeverRead) {
   GltfBuilder b;
   json doc = one_node_doc(b, test::triangle_mesh(b));
   doc["images"] = {{{"uri", "/etc/passwd"}}, {{"uri", "data:image/png;base64,AAAA"}}};

@@ -155,7 +155,7 @@ TEST(GltfView, MaterialsMapToDiffuseConductorDielectricAndEmission) {
        {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1}}}}}},
       {{"emissiveFactor", {1, 0.5, 0}},
        {"doubleSided", true},
-       {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}},
+       {"pbrMetallicRoughness", {{"metallicRoughnessTexture", {{"index", 0}}}}},
        {"extensions", {{"KHR_materials_emissive_strength", {{"emissiveStrength", 4}}}}}}};
   json nodes = json::array(), roots = json::array();
   for (int m = 0; m < 6; ++m) nodes.push_back({{"mesh", m}}), roots.push_back(m);
@@ -187,7 +187,7 @@ TEST(GltfView, MaterialsMapToDiffuseConductorDielectricAndEmission) {
   EXPECT_TRUE(s.shapes[4].two_sided_emission);
   EXPECT_FALSE(s.shapes[0].emission.has_value());
   EXPECT_EQ(s.shapes[5].material, "gltf/default");
-  EXPECT_TRUE(has_warning(s, "/materials/4: textures are not read (baseColorTexture)"));
+  EXPECT_TRUE(has_warning(s, "/materials/4: textures are not read (metallicRoughnessTexture)"));
   // Emission lights the scene: no default environment.
   EXPECT_TRUE(s.lights.empty());
 }

@@ -65,9 +65,11 @@ void run_convert(const ConvertArgs& args) {
   write_file_atomically(args.output, files[0].bytes);
   if (!args.quiet)
     fmt::print(stderr,
-               "wrote {} ({} shapes, {} objects, {} instances) and {} PLY meshes ({}) in {}\n",
+               "wrote {} ({} shapes, {} objects, {} instances) and {} PLY meshes and {} images "
+               "({}) in {}\n",
                args.output, scene.shapes.size(), scene.objects.size(), scene.instances.size(),
-               files.size() - 1, format_bytes(double(bytes)), (base / mesh_dir).string());
+               files.size() - 1 - scene.images.size(), scene.images.size(),
+               format_bytes(double(bytes)), (base / mesh_dir).string());
 }
 
 }  // namespace penumbra::app

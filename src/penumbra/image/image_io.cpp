@@ -12,11 +12,20 @@
 
 #include "penumbra/core/output_file.h"
 #include "penumbra/image/exr.h"
+#include "penumbra/image/jpeg.h"
 #include "penumbra/image/pfm.h"
 #include "penumbra/image/png.h"
 
 namespace penumbra {
 namespace {
+
+// The extension of path in lower case, with its dot.
+std::string lower_extension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
 
 // A name beside path that no other process or concurrent write uses.
 std::string temp_path_for(const std::string& path) {
@@ -47,9 +56,7 @@ void check_writable(const std::string& path) {
 }
 
 ImageFormat image_format_for(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const std::string ext = lower_extension(path);
   if (ext == ".png") return ImageFormat::kPng;
   if (ext == ".exr") return ImageFormat::kExr;
   if (ext == ".pfm") return ImageFormat::kPfm;
@@ -107,6 +114,8 @@ void write_image(const RgbImage& image, const std::string& path) {
 }
 
 RgbImage read_image(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  if (ext == ".jpg" || ext == ".jpeg") return read_jpeg(path);
   switch (image_format_for(path)) {
     case ImageFormat::kPng:
       return read_png(path);
@@ -116,6 +125,12 @@ RgbImage read_image(const std::string& path) {
       return read_pfm(path);
   }
   throw Error(path + ": unknown image format");
+}
+
+RgbImage decode_image(std::string_view bytes, const std::string& name, std::size_t max_pixels) {
+  if (bytes.starts_with("\x89PNG")) return decode_png(bytes, name, max_pixels);
+  if (bytes.starts_with("\xFF\xD8")) return decode_jpeg(bytes, name, max_pixels);
+  throw InputError(name, "byte 0", "neither a PNG nor a JPEG file (unknown signature)");
 }
 
 }  // namespace penumbra

@@ -35,7 +35,14 @@ void write_file_atomically(const std::string& path, std::string_view bytes);
 /// write_atomically. Throws Error on an unknown extension or a failed write.
 void write_image(const RgbImage& image, const std::string& path);
 
-/// Reads the image at path in the format its extension names, as linear RGB.
+/// Reads the image at path in the format its extension names, as linear RGB: those above and
+/// JPEG (.jpg, .jpeg; read only).
 RgbImage read_image(const std::string& path);
+
+/// Decodes a PNG or JPEG file held in memory (told apart by their signatures, not by a name), as
+/// linear RGB; `name` names it in messages. Throws InputError for other bytes, or images of more
+/// than `max_pixels` pixels (refused before the pixels are allocated).
+RgbImage decode_image(std::string_view bytes, const std::string& name,
+                      std::size_t max_pixels = kMaxImagePixels);
 
 }  // namespace penumbra

@@ -65,7 +65,7 @@ World::World(const SceneDesc& desc, const std::string& accel_spec) {
   // Materials by name.
   std::vector<std::string> names;
   for (const auto& m : desc.materials) {
-    materials_.push_back(make_material(m.params));
+    materials_.push_back(make_material(m.params, &desc.images));
     names.push_back(m.name);
   }
   for (const auto& l : desc.lights) lights_.push_back(make_light(l));

@@ -10,6 +10,7 @@
 #include "penumbra/scene/gltf_materials.h"
 #include "penumbra/scene/gltf_meshes.h"
 #include "penumbra/scene/gltf_model.h"
+#include "penumbra/scene/gltf_textures.h"
 #include "penumbra/scene/gltf_view.h"
 #include "penumbra/scene/mesh_reader.h"
 
@@ -88,10 +89,12 @@ ShapeDesc make_shape(const GltfPrimitive& p, const GltfMaterialUse& use, const T
 
 // Meshes: one used by a single node (or emissive) becomes plain shapes with the node's world
 // transform; one used by several becomes an object placed by one instance per node.
-void map_meshes(const GltfSource& src, const std::vector<GltfNodeVisit>& visits, SceneDesc& scene) {
+void map_meshes(const GltfSource& src, const std::string& base_dir,
+                const std::vector<GltfNodeVisit>& visits, SceneDesc& scene) {
   const tinygltf::Model& m = src.model;
+  GltfTextures textures(src, base_dir, scene.images);
   const std::vector<GltfMaterialUse> uses =
-      map_gltf_materials(src, scene.materials, scene.warnings);
+      map_gltf_materials(src, textures, scene.materials, scene.warnings);
   std::vector<std::vector<std::pair<const GltfNodeVisit*, Transform>>> users(m.meshes.size());
   for (const GltfNodeVisit& v : visits) {
     const int mesh = m.nodes[size_t(v.node)].mesh;
@@ -166,7 +169,7 @@ SceneDesc parse_gltf_scene(const std::string& bytes, const std::string& file_nam
   scene.render.height = 480;
 
   const std::vector<GltfNodeVisit> visits = traverse_gltf_scene(src, scene.warnings);
-  map_meshes(src, visits, scene);
+  map_meshes(src, base_dir, visits, scene);
   map_gltf_lights(src, visits, scene);
   if (!map_gltf_camera(src, visits, scene)) {
     set_default_gltf_camera(scene);

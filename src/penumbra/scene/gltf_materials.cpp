@@ -31,10 +31,9 @@ double extension_number(const tinygltf::Material& m, const char* ext, const char
   return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
-// The names of the textures a material refers to, for the warning.
-std::vector<std::string> texture_names(const tinygltf::Material& m) {
+// The names of the textures a material refers to that are not read, for the warning.
+std::vector<std::string> unread_texture_names(const tinygltf::Material& m) {
   std::vector<std::string> out;
-  if (m.pbrMetallicRoughness.baseColorTexture.index >= 0) out.push_back("baseColorTexture");
   if (m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0)
     out.push_back("metallicRoughnessTexture");
   if (m.normalTexture.index >= 0) out.push_back("normalTexture");
@@ -83,7 +82,32 @@ GltfMaterialUse gltf_default_material(const std::string& file,
   return {name, std::nullopt, false};
 }
 
-std::vector<GltfMaterialUse> map_gltf_materials(const GltfSource& src,
+namespace {
+
+// The material's parameters with its base colour texture, when it has a usable one: the diffuse
+// albedo or the conductor's reflectance (F0) become the image times baseColorFactor.
+void add_base_color_texture(const GltfSource& src, GltfTextures& textures,
+                            const tinygltf::Material& m, const std::string& at, Rgb base,
+                            json& params, std::vector<std::string>& warnings) {
+  const tinygltf::TextureInfo& info = m.pbrMetallicRoughness.baseColorTexture;
+  if (info.index < 0) return;
+  const std::string tex_at = at + "/pbrMetallicRoughness/baseColorTexture";
+  const char* key = params["type"] == "diffuse"     ? "albedo"
+                    : params["type"] == "conductor" ? "reflectance"
+                                                    : nullptr;
+  if (!key) {
+    warnings.push_back(src.message(tex_at, "not read for a transmissive material (" +
+                                               params["type"].get<std::string>() +
+                                               "): baseColorFactor used"));
+    return;
+  }
+  if (std::optional<json> t = textures.texture(info, tex_at, clamp01(base), warnings))
+    params[key] = std::move(*t);
+}
+
+}  // namespace
+
+std::vector<GltfMaterialUse> map_gltf_materials(const GltfSource& src, GltfTextures& textures,
                                                 std::vector<MaterialDesc>& materials,
                                                 std::vector<std::string>& warnings) {
   std::vector<GltfMaterialUse> out;
@@ -111,18 +135,18 @@ std::vector<GltfMaterialUse> map_gltf_materials(const GltfSource& src,
           "transmissionFactor " + std::to_string(transmission) + " taken as 1 (a dielectric)"));
     if (!(ior > 0.0 && ior < 100.0))
       src.fail(at + "/extensions/KHR_materials_ior/ior", "must lie in (0, 100)");
-    const std::vector<std::string> textures = texture_names(m);
-    if (!textures.empty())
+    const std::vector<std::string> unread = unread_texture_names(m);
+    if (!unread.empty())
       warnings.push_back(
-          src.message(at, "textures are not read (" + join(textures) + "): factors used"));
+          src.message(at, "textures are not read (" + join(unread) + "): factors used"));
     if (m.alphaMode == "BLEND" || m.alphaMode == "MASK")
-      warnings.push_back(src.message(at + "/alphaMode", m.alphaMode + " ignored: opaque"));
+      warnings.push_back(
+          src.message(at + "/alphaMode", m.alphaMode + " ignored: opaque (alpha is dropped)"));
     GltfMaterialUse use;
     use.material = "gltf/" + std::to_string(i);
-    materials.push_back(
-        {use.material,
-         SceneParams(gltf_material_params(base, metallic, pbr.roughnessFactor, transmission, ior),
-                     src.file, at)});
+    json params = gltf_material_params(base, metallic, pbr.roughnessFactor, transmission, ior);
+    add_base_color_texture(src, textures, m, at, base, params, warnings);
+    materials.push_back({use.material, SceneParams(std::move(params), src.file, at)});
     // Emission: emissiveFactor scaled by KHR_materials_emissive_strength.
     const double strength =
         extension_number(m, "KHR_materials_emissive_strength", "emissiveStrength", 1.0);

@@ -1,12 +1,15 @@
 #pragma once
 /// glTF materials (pbrMetallicRoughness, emission, KHR_materials_emissive_strength,
 /// KHR_materials_transmission, KHR_materials_ior) as penumbra MaterialDescs, plus the emission a
-/// shape that uses them carries. Textures are not read: their factors are used, with a warning.
+/// shape that uses them carries. The base colour texture becomes an image texture of the diffuse
+/// albedo or the conductor's F0; the other textures are not read: their factors are used, with a
+/// warning.
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "penumbra/scene/gltf_accessors.h"
+#include "penumbra/scene/gltf_textures.h"
 #include "penumbra/scene/scene_desc.h"
 
 namespace penumbra {
@@ -18,9 +21,10 @@ struct GltfMaterialUse {
   bool two_sided_emission = false;
 };
 
-/// Maps every glTF material to a MaterialDesc named "gltf/N" (appended to `materials`), in order;
-/// approximations and ignored features go to `warnings`.
-std::vector<GltfMaterialUse> map_gltf_materials(const GltfSource& src,
+/// Maps every glTF material to a MaterialDesc named "gltf/N" (appended to `materials`), in order,
+/// its base colour texture through `textures`; approximations and ignored features go to
+/// `warnings`.
+std::vector<GltfMaterialUse> map_gltf_materials(const GltfSource& src, GltfTextures& textures,
                                                 std::vector<MaterialDesc>& materials,
                                                 std::vector<std::string>& warnings);
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <system_error>
 
@@ -85,10 +86,32 @@ bool write_whole_file(std::string* err, const std::string&, const std::vector<un
   return false;
 }
 
-// Images are not decoded (textures are reported in a warning by the material mapping).
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int,
-                const unsigned char*, int, void*) {
+// Images are not decoded. A data: URI's bytes are kept for the importer (gltf_textures.cpp); a
+// bufferView image's are not: tinygltf hands them over without checking the view against its
+// buffer, so the importer reads bufferViews itself, checked.
+bool keep_image_bytes(tinygltf::Image* image, const int, std::string*, std::string*, int, int,
+                      const unsigned char* bytes, int size, void*) {
+  if (image->bufferView < 0 && bytes && size > 0) {
+    image->image.assign(bytes, bytes + size);
+    image->as_is = true;
+  }
   return true;
+}
+
+// tinygltf's image errors ("... for image[3] ...") with the JSON path of the image; other errors
+// as they are.
+InputError gltf_error(const std::string& file, const std::string& problem) {
+  static const std::regex image_index(R"(image\[(\d+)\])");
+  std::smatch m;
+  if (std::regex_search(problem, m, image_index)) {
+    const std::string at = "/images/" + m[1].str();
+    if (problem.find("Failed to decode 'uri'") != std::string::npos)
+      return InputError(file, at + "/uri", "bad data: URI (not valid base64 data)");
+    if (problem.find("bufferView") != std::string::npos)
+      return InputError(file, at + "/bufferView", problem);
+    return InputError(file, at, problem);
+  }
+  return InputError(file, "", problem);
 }
 
 // tinygltf's messages are lines; each becomes "FILE: line".
@@ -110,7 +133,7 @@ tinygltf::Model read_gltf_model(std::string_view bytes, const std::string& file_
   if (ec) guard.base.clear();
 
   tinygltf::TinyGLTF loader;
-  loader.SetImageLoader(&skip_image, nullptr);
+  loader.SetImageLoader(&keep_image_bytes, nullptr);
   loader.SetFsCallbacks(
       {&file_exists, &expand_file_path, &read_whole_file, &write_whole_file, &guard});
   tinygltf::Model model;
@@ -130,9 +153,47 @@ tinygltf::Model read_gltf_model(std::string_view bytes, const std::string& file_
   if (!ok || !err.empty()) {
     std::string problem = err.empty() ? "not a valid glTF file" : err;
     while (!problem.empty() && problem.back() == '\n') problem.pop_back();
-    throw InputError(file_name, "", problem);
+    throw gltf_error(file_name, problem);
   }
   return model;
+}
+
+std::string read_gltf_file(const std::string& base_dir, const std::string& relative,
+                           const std::string& file_name, const std::string& json_path) {
+  FsGuard guard{{}, file_name};
+  std::error_code ec;
+  guard.base = fs::weakly_canonical(fs::path(base_dir.empty() ? "." : base_dir), ec);
+  if (ec) guard.base.clear();
+  const fs::path path = fs::path(base_dir.empty() ? "." : base_dir) / relative;
+  if (relative.empty() || fs::path(relative).is_absolute() || !inside_base(path.string(), guard))
+    throw InputError(file_name, json_path,
+                     "\"" + relative + "\" is outside the glTF file's folder: not read");
+  if (!fs::is_regular_file(path, ec))
+    throw InputError(file_name, json_path, "image file \"" + path.string() + "\" not found");
+  std::vector<unsigned char> bytes;
+  std::string err;
+  if (!read_whole_file(&bytes, &err, path.string(), &guard))
+    throw InputError(file_name, json_path, "cannot read \"" + path.string() + "\"");
+  return std::string(bytes.begin(), bytes.end());
+}
+
+std::string gltf_percent_decode(const std::string& uri) {
+  const auto hex = [](char c) {
+    if (c >= '0' && c <= '9') return c - '0';
+    if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+    if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+    return -1;
+  };
+  std::string out;
+  for (size_t i = 0; i < uri.size(); ++i) {
+    if (uri[i] == '%' && i + 2 < uri.size() && hex(uri[i + 1]) >= 0 && hex(uri[i + 2]) >= 0) {
+      out += char(hex(uri[i + 1]) * 16 + hex(uri[i + 2]));
+      i += 2;
+    } else {
+      out += uri[i];
+    }
+  }
+  return out;
 }
 
 }  // namespace penumbra

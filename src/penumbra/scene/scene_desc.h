@@ -2,6 +2,7 @@
 /// The plain description of a scene, as read from a scene file: no renderer types. The renderer
 /// creates cameras, materials and lights from these records by their type names.
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <variant>
@@ -70,6 +71,15 @@ struct InstanceDesc {
   std::string name;  ///< optional "name" from the file ("" when absent)
 };
 
+/// An encoded image (PNG or JPEG bytes) that a scene file holds rather than names: a glTF image
+/// from a data: URI, a .glb's bufferView or an external file read by the importer. An image
+/// texture whose "file" equals `name` decodes these bytes instead of reading a file.
+struct EmbeddedImage {
+  std::string name;                          ///< "FILE#/images/N": what texture parameters refer to
+  std::string mime_type;                     ///< "image/png" or "image/jpeg"
+  std::shared_ptr<const std::string> bytes;  ///< the encoded file, shared between copies
+};
+
 /// Everything a scene file describes.
 struct SceneDesc {
   std::string file;         ///< the scene file, for messages
@@ -81,6 +91,7 @@ struct SceneDesc {
   std::vector<ShapeDesc> shapes;
   std::vector<ObjectDesc> objects;      ///< named objects, placed by `instances`
   std::vector<InstanceDesc> instances;  ///< placements of objects
+  std::vector<EmbeddedImage> images;    ///< encoded images that textures name (glTF)
   /// Problems that did not stop loading ("FILE:PLACE: message"): what an importer skipped,
   /// approximated or did not read, and the warnings of mesh files (an OBJ polygon that is not
   /// planar). The CLI prints them.

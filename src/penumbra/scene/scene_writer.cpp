@@ -1,6 +1,7 @@
 #include "penumbra/scene/scene_writer.h"
 
 #include <filesystem>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -21,18 +22,27 @@ json rgb(Rgb c) {
 }
 
 // `v` with every string under the keys "map" and "file" (environment maps, image textures, at
-// any depth) made absolute, so that the written scene finds them wherever it is written.
-json with_absolute_files(json v, int depth = 0) {
+// any depth) made absolute, so that the written scene finds them wherever it is written, except
+// the names of embedded images, which become their written files (`embedded`: name -> path
+// relative to the scene file).
+json with_absolute_files(json v, const std::map<std::string, std::string>& embedded,
+                         int depth = 0) {
   if (depth > 64) return v;
   if (v.is_object()) {
     for (auto& [key, child] : v.items()) {
-      if ((key == "map" || key == "file") && child.is_string() && !child.get<std::string>().empty())
-        child = std::filesystem::absolute(child.get<std::string>()).lexically_normal().string();
-      else
-        child = with_absolute_files(std::move(child), depth + 1);
+      if ((key == "map" || key == "file") && child.is_string() &&
+          !child.get<std::string>().empty()) {
+        const auto it = embedded.find(child.get<std::string>());
+        child =
+            it != embedded.end()
+                ? it->second
+                : std::filesystem::absolute(child.get<std::string>()).lexically_normal().string();
+      } else {
+        child = with_absolute_files(std::move(child), embedded, depth + 1);
+      }
     }
   } else if (v.is_array()) {
-    for (auto& child : v) child = with_absolute_files(std::move(child), depth + 1);
+    for (auto& child : v) child = with_absolute_files(std::move(child), embedded, depth + 1);
   }
   return v;
 }
@@ -101,12 +111,22 @@ std::vector<SceneFile> write_scene_json(const SceneDesc& scene, const std::strin
       scene.description.empty() ? "converted by penumbra from " + scene.file : scene.description;
   root["camera"] = scene.camera.json();
   root["render"] = render_json(scene.render);
+  // Embedded images as files: dir/image-N.png or .jpg, their bytes as they were.
+  std::map<std::string, std::string> embedded;
+  for (size_t i = 0; i < scene.images.size(); ++i) {
+    const EmbeddedImage& image = scene.images[i];
+    const std::string path =
+        dir + "image-" + std::to_string(i) + (image.mime_type == "image/jpeg" ? ".jpg" : ".png");
+    embedded[image.name] = path;
+    files.push_back({path, image.bytes ? *image.bytes : std::string()});
+  }
   json materials = json::object();
   for (const MaterialDesc& m : scene.materials)
-    materials[m.name] = with_absolute_files(m.params.json());
+    materials[m.name] = with_absolute_files(m.params.json(), embedded);
   root["materials"] = materials;
   json lights = json::array();
-  for (const SceneParams& l : scene.lights) lights.push_back(with_absolute_files(l.json()));
+  for (const SceneParams& l : scene.lights)
+    lights.push_back(with_absolute_files(l.json(), embedded));
   root["lights"] = lights;
   if (!scene.objects.empty()) {
     json objects = json::object();

@@ -20,8 +20,10 @@ struct SceneFile {
 /// shape S of object O), referenced from the JSON by those relative paths. Spheres and quads are
 /// written inline; every transform as its 16 numbers ({"matrix": ...}, doubles that round-trip);
 /// the camera, materials and lights as their parameter objects, with the files they name
-/// (environment maps, image textures) made absolute. Reading the result with load_scene gives the
-/// same shapes, meshes (bit for bit), materials, lights, camera and render settings.
+/// (environment maps, image textures) made absolute. Embedded images (glTF) are written as they
+/// are to `mesh_dir`/image-N.png or .jpg and textures name those files. Reading the result with
+/// load_scene gives the same shapes, meshes (bit for bit), materials, lights, camera and render
+/// settings.
 std::vector<SceneFile> write_scene_json(const SceneDesc& scene, const std::string& json_name,
                                         const std::string& mesh_dir);
 

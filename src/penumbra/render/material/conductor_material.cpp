@@ -1,5 +1,7 @@
 #include "penumbra/render/material/conductor_material.h"
 
+#include "penumbra/render/texture/texture_params.h"
+
 #include <algorithm>
 #include <cmath>
 #include <complex>
@@ -38,6 +40,10 @@ ConductorMaterial::ConductorMaterial(ConductorFresnel fresnel, float roughness)
       distribution_(MicrofacetDistribution::roughness_to_alpha(roughness)),
       smooth_(distribution_.effectively_smooth()) {}
 
+ConductorMaterial::ConductorMaterial(ConductorFresnel fresnel,
+                                     const MicrofacetDistribution& distribution)
+    : fresnel_(fresnel), distribution_(distribution), smooth_(distribution.effectively_smooth()) {}
+
 namespace {
 
 // Reads `key` as an RGB whose channels must lie in [lo, hi] (lo excluded when `open_lo`); the
@@ -51,8 +57,10 @@ Rgb get_rgb_in(const SceneParams& params, const char* key, float lo, float hi, b
   return v;
 }
 
-// The Fresnel form from either eta and k or reflectance; exactly one form must be given.
-ConductorFresnel read_fresnel(const SceneParams& params) {
+// The Fresnel form from either eta and k or reflectance (its texture to `f0`); exactly one form
+// must be given.
+ConductorFresnel read_fresnel(const SceneParams& params, const std::vector<EmbeddedImage>* embedded,
+                              Texture& f0) {
   const bool has_ior = params.has("eta") || params.has("k");
   const bool has_f0 = params.has("reflectance");
   if (has_ior && has_f0)
@@ -61,8 +69,10 @@ ConductorFresnel read_fresnel(const SceneParams& params) {
     params.fail("type",
                 "a conductor needs \"eta\" and \"k\" (complex index of refraction) or "
                 "\"reflectance\" (Schlick's normal-incidence colour)");
-  if (has_f0)
-    return ConductorFresnel::schlick_f0(get_rgb_in(params, "reflectance", 0, 1, false, "[0, 1]"));
+  if (has_f0) {
+    f0 = read_texture(params, "reflectance", Rgb(0.0f), 0.0f, 1.0f, embedded);
+    return ConductorFresnel::schlick_f0(f0.eval(TextureQuery{}));
+  }
   if (!params.has("eta")) params.fail("eta", "missing: \"eta\" and \"k\" go together");
   if (!params.has("k")) params.fail("k", "missing: \"eta\" and \"k\" go together");
   return ConductorFresnel::complex_ior(get_rgb_in(params, "eta", 0, 100, true, "(0, 100]"),
@@ -71,9 +81,19 @@ ConductorFresnel read_fresnel(const SceneParams& params) {
 
 }  // namespace
 
-ConductorMaterial::ConductorMaterial(const SceneParams& params)
-    : ConductorMaterial(read_fresnel(params), read_roughness(params)) {
+ConductorMaterial::ConductorMaterial(const SceneParams& params,
+                                     const std::vector<EmbeddedImage>* embedded)
+    : distribution_(MicrofacetDistribution::roughness_to_alpha(read_roughness(params))),
+      smooth_(distribution_.effectively_smooth()) {
+  fresnel_ = read_fresnel(params, embedded, f0_texture_);
+  textured_ = !f0_texture_.is_constant();
   params.check_all_used();
+}
+
+const Material& ConductorMaterial::resolve(const SurfaceInteraction& si,
+                                           MaterialScratch& scratch) const {
+  return scratch.emplace<ConductorMaterial>(ConductorFresnel::schlick_f0(f0_texture_.eval(si)),
+                                            distribution_);
 }
 
 Rgb ConductorMaterial::eval(Vec3 wo, Vec3 wi, TransportMode) const {

@@ -2,6 +2,8 @@
 /// Metals: microfacet reflection with the Fresnel factor of a conductor (glossy reflection).
 #include "penumbra/render/material/material.h"
 #include "penumbra/render/material/microfacet.h"
+#include "penumbra/render/texture/texture.h"
+#include "penumbra/scene/scene_desc.h"
 #include "penumbra/scene/scene_params.h"
 
 namespace penumbra {
@@ -34,11 +36,16 @@ struct ConductorFresnel {
 /// Smith G2 (Walter et al. 2007; Heitz 2014), importance-sampled by visible normals (Heitz 2018).
 /// Reflects on both sides. Parameters: roughness (in [0, 1], default 0.3; alpha = roughness^2;
 /// alpha < 1e-3 is a perfect mirror); either eta and k (RGB, complex index of refraction) or
-/// reflectance (RGB in [0, 1], Schlick's F0), exactly one of the two forms.
+/// reflectance (RGB in [0, 1] or a texture of such colours, Schlick's F0), exactly one of the two
+/// forms.
 class ConductorMaterial final : public Material {
  public:
   ConductorMaterial(ConductorFresnel fresnel, float roughness);
-  explicit ConductorMaterial(const SceneParams& params);
+  /// A conductor with this Fresnel form and distribution (a textured one at a surface point).
+  ConductorMaterial(ConductorFresnel fresnel, const MicrofacetDistribution& distribution);
+  /// From scene parameters; an image texture of reflectance may name one of `embedded`.
+  explicit ConductorMaterial(const SceneParams& params,
+                             const std::vector<EmbeddedImage>* embedded = nullptr);
   Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::kRadiance) const override;
   float pdf(Vec3 wo, Vec3 wi) const override;
   std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,
@@ -52,10 +59,14 @@ class ConductorMaterial final : public Material {
   /// The microfacet distribution.
   const MicrofacetDistribution& distribution() const { return distribution_; }
 
+ protected:
+  const Material& resolve(const SurfaceInteraction& si, MaterialScratch& scratch) const override;
+
  private:
   ConductorFresnel fresnel_;
   MicrofacetDistribution distribution_;
   bool smooth_;
+  Texture f0_texture_;  ///< Schlick's F0 over the surface, used when textured_
 };
 
 }  // namespace penumbra

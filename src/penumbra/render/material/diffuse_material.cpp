@@ -8,8 +8,9 @@
 
 namespace penumbra {
 
-DiffuseMaterial::DiffuseMaterial(const SceneParams& params) {
-  albedo_texture_ = read_texture(params, "albedo", Rgb(0.5f), 0.0f, 1.0f);
+DiffuseMaterial::DiffuseMaterial(const SceneParams& params,
+                                 const std::vector<EmbeddedImage>* embedded) {
+  albedo_texture_ = read_texture(params, "albedo", Rgb(0.5f), 0.0f, 1.0f, embedded);
   textured_ = !albedo_texture_.is_constant();
   albedo_ = albedo_texture_.eval(TextureQuery{});  // the colour itself when constant
   params.check_all_used();

@@ -2,6 +2,7 @@
 /// Lambertian (ideal diffuse) reflection.
 #include "penumbra/render/material/material.h"
 #include "penumbra/render/texture/texture.h"
+#include "penumbra/scene/scene_desc.h"
 #include "penumbra/scene/scene_params.h"
 
 namespace penumbra {
@@ -11,7 +12,9 @@ namespace penumbra {
 class DiffuseMaterial final : public Material {
  public:
   explicit DiffuseMaterial(Rgb albedo) : albedo_(albedo) {}
-  explicit DiffuseMaterial(const SceneParams& params);
+  /// From scene parameters; image textures may name one of `embedded`.
+  explicit DiffuseMaterial(const SceneParams& params,
+                           const std::vector<EmbeddedImage>* embedded = nullptr);
   Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::kRadiance) const override;
   float pdf(Vec3 wo, Vec3 wi) const override;
   std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,

@@ -1,6 +1,7 @@
 #include "penumbra/render/material/material_registry.h"
 
 #include <functional>
+#include <type_traits>
 
 #include "penumbra/core/registry.h"
 #include "penumbra/render/material/conductor_material.h"
@@ -13,11 +14,16 @@ namespace penumbra {
 
 namespace {
 
-using Factory = std::function<std::unique_ptr<Material>(const SceneParams&)>;
+using Images = std::vector<EmbeddedImage>;
+using Factory = std::function<std::unique_ptr<Material>(const SceneParams&, const Images*)>;
 
+// Materials with textures take the scene's embedded images; the others only their parameters.
 template <class T>
-std::unique_ptr<Material> create(const SceneParams& p) {
-  return std::make_unique<T>(p);
+std::unique_ptr<Material> create(const SceneParams& p, const Images* embedded) {
+  if constexpr (std::is_constructible_v<T, const SceneParams&, const Images*>)
+    return std::make_unique<T>(p, embedded);
+  else
+    return std::make_unique<T>(p);
 }
 
 /// Every material type, written out explicitly: a new one is one line here.
@@ -34,10 +40,12 @@ const Registry<Factory>& registry() {
 
 }  // namespace
 
-std::vector<std::string> material_types() { return registry().names(); }
+std::vector<std::string> material_types() {
+  return registry().names();
+}
 
-std::unique_ptr<Material> make_material(const SceneParams& params) {
-  if (const Factory* make = registry().find(params.type())) return (*make)(params);
+std::unique_ptr<Material> make_material(const SceneParams& params, const Images* embedded) {
+  if (const Factory* make = registry().find(params.type())) return (*make)(params, embedded);
   params.fail("type", registry().unknown_name_message("material type", params.type()));
 }
 

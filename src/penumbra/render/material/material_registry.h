@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "penumbra/render/material/material.h"
+#include "penumbra/scene/scene_desc.h"
 #include "penumbra/scene/scene_params.h"
 
 namespace penumbra {
@@ -13,7 +14,9 @@ namespace penumbra {
 std::vector<std::string> material_types();
 
 /// Creates the material that params.type() names; throws InputError for an unknown type (listing
-/// the valid ones) or a bad parameter.
-std::unique_ptr<Material> make_material(const SceneParams& params);
+/// the valid ones) or a bad parameter. Image textures may name one of `embedded` (a SceneDesc's
+/// images).
+std::unique_ptr<Material> make_material(const SceneParams& params,
+                                        const std::vector<EmbeddedImage>* embedded = nullptr);
 
 }  // namespace penumbra

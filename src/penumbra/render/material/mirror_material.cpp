@@ -6,8 +6,9 @@
 
 namespace penumbra {
 
-MirrorMaterial::MirrorMaterial(const SceneParams& params) {
-  reflectance_texture_ = read_texture(params, "reflectance", Rgb(1.0f), 0.0f, 1.0f);
+MirrorMaterial::MirrorMaterial(const SceneParams& params,
+                               const std::vector<EmbeddedImage>* embedded) {
+  reflectance_texture_ = read_texture(params, "reflectance", Rgb(1.0f), 0.0f, 1.0f, embedded);
   textured_ = !reflectance_texture_.is_constant();
   reflectance_ = reflectance_texture_.eval(TextureQuery{});  // the colour itself when constant
   params.check_all_used();

@@ -2,6 +2,7 @@
 /// Perfect specular reflection.
 #include "penumbra/render/material/material.h"
 #include "penumbra/render/texture/texture.h"
+#include "penumbra/scene/scene_desc.h"
 #include "penumbra/scene/scene_params.h"
 
 namespace penumbra {
@@ -11,7 +12,9 @@ namespace penumbra {
 class MirrorMaterial final : public Material {
  public:
   explicit MirrorMaterial(Rgb reflectance) : reflectance_(reflectance) {}
-  explicit MirrorMaterial(const SceneParams& params);
+  /// From scene parameters; image textures may name one of `embedded`.
+  explicit MirrorMaterial(const SceneParams& params,
+                          const std::vector<EmbeddedImage>* embedded = nullptr);
   Rgb eval(Vec3, Vec3, TransportMode = TransportMode::kRadiance) const override { return {}; }
   float pdf(Vec3, Vec3) const override { return 0.0f; }
   std::optional<BsdfSample> sample(Vec3 wo, float uc, Vec2 u,

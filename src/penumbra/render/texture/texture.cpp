@@ -15,6 +15,24 @@ int cell_parity(float x) {
   return static_cast<int>(static_cast<int64_t>(std::floor(x)) & 1);
 }
 
+/// Pixel index i of an axis of n pixels under `wrap`, or -1 for black.
+int wrap_index(int64_t i, int n, Texture::Wrap wrap) {
+  switch (wrap) {
+    case Texture::Wrap::kRepeat:
+      return int((i % n + n) % n);
+    case Texture::Wrap::kClamp:
+      return int(std::clamp<int64_t>(i, 0, n - 1));
+    case Texture::Wrap::kBlack:
+      return i >= 0 && i < n ? int(i) : -1;
+    case Texture::Wrap::kMirror: {
+      // Copy k = floor(i / n) is mirrored when odd: reduce modulo 2n, then reflect the second half.
+      const int64_t m = (i % (2 * int64_t{n}) + 2 * int64_t{n}) % (2 * int64_t{n});
+      return int(m < n ? m : 2 * int64_t{n} - 1 - m);
+    }
+  }
+  return -1;
+}
+
 }  // namespace
 
 Texture Texture::constant(Rgb c) {
@@ -53,30 +71,27 @@ Texture Texture::zone_plate(float k, Vec2 center, Rgb c0, Rgb c1) {
 }
 
 Texture Texture::image(std::shared_ptr<const RgbImage> image, Vec2 scale, Vec2 offset, Wrap wrap) {
+  return Texture::image(std::move(image), scale, offset, wrap, wrap, Rgb(1.0f));
+}
+
+Texture Texture::image(std::shared_ptr<const RgbImage> image, Vec2 scale, Vec2 offset, Wrap wrap_s,
+                       Wrap wrap_t, Rgb factor) {
   Texture t;
   t.kind_ = Kind::kImage;
   t.image_ = std::move(image);
   t.scale_ = {scale.x, scale.y, 0.0f};
   t.center_ = offset;
-  t.wrap_ = wrap;
+  t.wrap_s_ = wrap_s;
+  t.wrap_t_ = wrap_t;
+  t.c0_ = factor;
   return t;
 }
 
-Rgb Texture::texel(int x, int y) const {
-  const int w = image_->width(), h = image_->height();
-  if (x < 0 || x >= w || y < 0 || y >= h) {
-    switch (wrap_) {
-      case Wrap::kRepeat:
-        x = (x % w + w) % w, y = (y % h + h) % h;
-        break;
-      case Wrap::kClamp:
-        x = std::clamp(x, 0, w - 1), y = std::clamp(y, 0, h - 1);
-        break;
-      case Wrap::kBlack:
-        return Rgb(0.0f);
-    }
-  }
-  return image_->at(x, y);
+Rgb Texture::texel(int64_t x, int64_t y) const {
+  const int ix = wrap_index(x, image_->width(), wrap_s_);
+  const int iy = wrap_index(y, image_->height(), wrap_t_);
+  if (ix < 0 || iy < 0) return Rgb(0.0f);
+  return image_->at(ix, iy);
 }
 
 double Texture::zone_plate_intensity(double k, double r2) {
@@ -111,18 +126,13 @@ Rgb Texture::eval(const TextureQuery& q) const {
       const double x = s * image_->width() - 0.5, y = (1.0 - t) * image_->height() - 0.5;
       if (!std::isfinite(x) || !std::isfinite(y) || std::fabs(x) > 1e9 || std::fabs(y) > 1e9)
         return Rgb(0.0f);
+      // |x|, |y| <= 1e9: the int64 pixel indices and their wrapping cannot overflow.
       const double fx = std::floor(x), fy = std::floor(y);
-      const auto ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
-      const int w = image_->width(), h = image_->height();
-      // Reduce repeat coordinates first so that the int arithmetic of texel() cannot overflow.
-      const int x0 =
-          wrap_ == Wrap::kRepeat ? int((ix % w + w) % w) : int(std::clamp<int64_t>(ix, -2, w + 1));
-      const int y0 =
-          wrap_ == Wrap::kRepeat ? int((iy % h + h) % h) : int(std::clamp<int64_t>(iy, -2, h + 1));
+      const auto x0 = static_cast<int64_t>(fx), y0 = static_cast<int64_t>(fy);
       const auto tx = float(x - fx), ty = float(y - fy);
       const Rgb top = texel(x0, y0) + (texel(x0 + 1, y0) - texel(x0, y0)) * tx;
       const Rgb bottom = texel(x0, y0 + 1) + (texel(x0 + 1, y0 + 1) - texel(x0, y0 + 1)) * tx;
-      return top + (bottom - top) * ty;
+      return (top + (bottom - top) * ty) * c0_;
     }
   }
   return c0_;

@@ -26,8 +26,10 @@ class Texture {
  public:
   /// The kinds of texture.
   enum class Kind : uint8_t { kConstant, kCheckerboard, kCheckerboard3d, kZonePlate, kImage };
-  /// What an image texture shows outside [0, 1)^2.
-  enum class Wrap : uint8_t { kRepeat, kClamp, kBlack };
+  /// What an image texture shows outside [0, 1)^2, per axis: the image repeated, its edge pixels
+  /// extended, black, or the image repeated with every other copy mirrored (glTF's
+  /// MIRRORED_REPEAT: pixel x of copy k is pixel W - 1 - x when k is odd).
+  enum class Wrap : uint8_t { kRepeat, kClamp, kBlack, kMirror };
 
   /// A constant colour.
   static Texture constant(Rgb c);
@@ -46,6 +48,10 @@ class Texture {
   /// centred on s = (x + 0.5) / W, t = 1 - (y + 0.5) / H; lookups are bilinear between pixel
   /// centres, with `wrap` outside the image. `image` must not be empty.
   static Texture image(std::shared_ptr<const RgbImage> image, Vec2 scale, Vec2 offset, Wrap wrap);
+  /// The image texture with a wrap mode per axis (`wrap_s` along s, `wrap_t` along t), every
+  /// lookup multiplied by `factor` per channel (glTF's baseColorFactor).
+  static Texture image(std::shared_ptr<const RgbImage> image, Vec2 scale, Vec2 offset, Wrap wrap_s,
+                       Wrap wrap_t, Rgb factor);
 
   /// The kind.
   Kind kind() const { return kind_; }
@@ -61,15 +67,15 @@ class Texture {
 
  private:
   Kind kind_ = Kind::kConstant;
-  Rgb c0_, c1_;                ///< constant colour / even / dark colour, and odd / bright colour
-  Vec3 scale_;                 ///< checkerboard frequencies per axis
-  Vec2 center_;                ///< zone plate centre in uv; image texture offset (du, dv)
-  float k_ = 0;                ///< zone plate chirp rate
-  Wrap wrap_ = Wrap::kRepeat;  ///< image texture wrap mode
-  std::shared_ptr<const RgbImage> image_;  ///< image texture pixels (linear RGB)
+  Rgb c0_, c1_;  ///< constant colour / even / dark colour / image factor, and odd / bright colour
+  Vec3 scale_;   ///< checkerboard frequencies per axis
+  Vec2 center_;  ///< zone plate centre in uv; image texture offset (du, dv)
+  float k_ = 0;  ///< zone plate chirp rate
+  Wrap wrap_s_ = Wrap::kRepeat, wrap_t_ = Wrap::kRepeat;  ///< image texture wrap modes
+  std::shared_ptr<const RgbImage> image_;                 ///< image texture pixels (linear RGB)
 
-  /// Image texel (x, y), wrapped.
-  Rgb texel(int x, int y) const;
+  /// Image texel (x, y) after each axis's wrap mode (black: zero outside the image).
+  Rgb texel(int64_t x, int64_t y) const;
 };
 
 }  // namespace penumbra

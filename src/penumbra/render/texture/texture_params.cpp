@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -42,33 +43,51 @@ void read_colors(const SceneParams& tex, float lo, float hi, Rgb& c0, Rgb& c1) {
   c1 = checked(json_rgb(a[1], place.index(1)), place.index(1), lo, hi);
 }
 
-/// The image at `path`, read once per process while any texture holds it (materials sharing a
-/// file share its pixels), every pixel checked to lie in [lo, hi].
+/// The embedded image named `path`, or nullptr.
+const EmbeddedImage* find_embedded(const std::vector<EmbeddedImage>* embedded,
+                                   const std::string& path) {
+  if (!embedded) return nullptr;
+  for (const EmbeddedImage& e : *embedded)
+    if (e.name == path && e.bytes) return &e;
+  return nullptr;
+}
+
+/// The image at `path` (a file, or one of `embedded`), decoded once per process while any texture
+/// holds it (materials sharing a file share its pixels), every pixel times `factor` checked to lie
+/// in [lo, hi].
 std::shared_ptr<const RgbImage> texture_image(const SceneParams& tex, const std::string& path,
-                                              float lo, float hi) {
+                                              const std::vector<EmbeddedImage>* embedded,
+                                              Rgb factor, float lo, float hi) {
   static std::mutex mutex;
   static std::map<std::string, std::weak_ptr<const RgbImage>> cache;
+  // Embedded images are keyed by their bytes too: two scenes may reuse a name ("a.glb#/images/0").
+  const EmbeddedImage* e = find_embedded(embedded, path);
+  const std::string key = e ? fmt::format("embedded:{}:{}:{:x}", path, e->bytes->size(),
+                                          std::hash<std::string_view>{}(*e->bytes))
+                            : path;
   std::shared_ptr<const RgbImage> image;
   {
     const std::lock_guard<std::mutex> lock(mutex);
-    image = cache[path].lock();
+    image = cache[key].lock();
   }
   if (!image) {
     std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) tex.fail("file", "image not found: " + path);
+    if (!e && !std::filesystem::is_regular_file(path, ec))
+      tex.fail("file", "image not found: " + path);
     try {
-      image = std::make_shared<const RgbImage>(read_image(path));
-    } catch (const Error& e) {
-      tex.fail("file", std::string("cannot read the texture: ") + e.what());
+      image =
+          std::make_shared<const RgbImage>(e ? decode_image(*e->bytes, path) : read_image(path));
+    } catch (const Error& err) {
+      tex.fail("file", std::string("cannot read the texture: ") + err.what());
     }
     if (image->empty()) tex.fail("file", "the image has no pixels: " + path);
     const std::lock_guard<std::mutex> lock(mutex);
-    cache[path] = image;
+    cache[key] = image;
   }
   for (int y = 0; y < image->height(); ++y)
     for (int x = 0; x < image->width(); ++x)
       for (int c = 0; c < 3; ++c) {
-        const float v = image->at(x, y)[c];
+        const float v = image->at(x, y)[c] * factor[c];
         if (!(v >= lo && v <= hi))
           tex.fail("file", fmt::format("{}: pixel ({}, {}) is {}; a texture here must lie in "
                                        "[{}, {}]",
@@ -77,8 +96,34 @@ std::shared_ptr<const RgbImage> texture_image(const SceneParams& tex, const std:
   return image;
 }
 
+/// One wrap mode by name.
+Texture::Wrap parse_wrap(const nlohmann::json& v, const JsonPlace& place) {
+  const std::string name = json_string(v, place);
+  if (name == "repeat") return Texture::Wrap::kRepeat;
+  if (name == "clamp") return Texture::Wrap::kClamp;
+  if (name == "black") return Texture::Wrap::kBlack;
+  if (name == "mirror") return Texture::Wrap::kMirror;
+  place.fail("unknown wrap '" + name + "' (valid: repeat, clamp, black, mirror)");
+}
+
+/// "wrap": one mode for both axes, or [s, t]; default repeat.
+void read_wrap(const SceneParams& tex, Texture::Wrap& s, Texture::Wrap& t) {
+  s = t = Texture::Wrap::kRepeat;
+  const nlohmann::json* v = tex.get_json("wrap");
+  if (!v) return;
+  const JsonPlace place = JsonPlace{tex.file(), tex.path()}.key("wrap");
+  if (!v->is_array()) {
+    s = t = parse_wrap(*v, place);
+    return;
+  }
+  if (v->size() != 2) place.fail(fmt::format("expected 2 wrap modes [s, t], got {}", v->size()));
+  s = parse_wrap((*v)[0], place.index(0));
+  t = parse_wrap((*v)[1], place.index(1));
+}
+
 /// The texture described by the object `tex`.
-Texture parse_texture(const SceneParams& tex, float lo, float hi) {
+Texture parse_texture(const SceneParams& tex, float lo, float hi,
+                      const std::vector<EmbeddedImage>* embedded) {
   const JsonPlace here{tex.file(), tex.path()};
   Texture t;
   Rgb c0, c1;
@@ -123,15 +168,13 @@ Texture parse_texture(const SceneParams& tex, float lo, float hi) {
     if (const nlohmann::json* v = tex.get_json("offset"))
       offset = json_vec2(*v, here.key("offset"));
     if (!std::isfinite(offset.x) || !std::isfinite(offset.y)) tex.fail("offset", "must be finite");
-    const std::string wrap = tex.get_string("wrap", "repeat");
-    Texture::Wrap mode = Texture::Wrap::kRepeat;
-    if (wrap == "clamp")
-      mode = Texture::Wrap::kClamp;
-    else if (wrap == "black")
-      mode = Texture::Wrap::kBlack;
-    else if (wrap != "repeat")
-      tex.fail("wrap", "unknown wrap '" + wrap + "' (valid: repeat, clamp, black)");
-    t = Texture::image(texture_image(tex, path, lo, hi), scale, offset, mode);
+    Texture::Wrap wrap_s, wrap_t;
+    read_wrap(tex, wrap_s, wrap_t);
+    Rgb factor(1.0f);
+    if (const nlohmann::json* v = tex.get_json("factor"))
+      factor = checked(json_rgb(*v, here.key("factor")), here.key("factor"), 0.0f, 1.0f);
+    t = Texture::image(texture_image(tex, path, embedded, factor, lo, hi), scale, offset, wrap_s,
+                       wrap_t, factor);
   } else {
     tex.fail("type", "unknown texture type '" + tex.type() + "' (valid: " + kTextureTypes + ")");
   }
@@ -142,11 +185,12 @@ Texture parse_texture(const SceneParams& tex, float lo, float hi) {
 }  // namespace
 
 Texture read_texture(const SceneParams& params, const std::string& key, Rgb fallback, float lo,
-                     float hi) {
+                     float hi, const std::vector<EmbeddedImage>* embedded) {
   const nlohmann::json* v = params.get_json(key);
   if (!v) return Texture::constant(fallback);
   const JsonPlace place = JsonPlace{params.file(), params.path()}.key(key);
-  if (v->is_object()) return parse_texture(SceneParams(*v, place.file, place.path), lo, hi);
+  if (v->is_object())
+    return parse_texture(SceneParams(*v, place.file, place.path), lo, hi, embedded);
   // A plain colour: the message of the untextured materials.
   const Rgb c = json_rgb(*v, place);
   for (int i = 0; i < 3; ++i)
