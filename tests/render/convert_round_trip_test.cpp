@@ -88,8 +88,9 @@ TEST(ConvertRoundTrip, PbrtSceneWrittenAsJsonRendersTheSameBits) {
   for (size_t i = 0; i < pbrt.shapes.size(); ++i) {
     EXPECT_EQ(json.shapes[i].to_world.matrix().m, pbrt.shapes[i].to_world.matrix().m) << i;
     ASSERT_EQ(json.shapes[i].to_world_end.has_value(), pbrt.shapes[i].to_world_end.has_value());
-    if (pbrt.shapes[i].to_world_end)
+    if (pbrt.shapes[i].to_world_end) {
       EXPECT_EQ(json.shapes[i].to_world_end->matrix().m, pbrt.shapes[i].to_world_end->matrix().m);
+    }
     EXPECT_EQ(json.shapes[i].material, pbrt.shapes[i].material);
     EXPECT_EQ(json.shapes[i].emission.has_value(), pbrt.shapes[i].emission.has_value());
     const auto* a = std::get_if<TriangleMesh>(&pbrt.shapes[i].geometry);

@@ -76,7 +76,8 @@ std::string obj_of(const std::vector<Polygon>& polys) {
       char line[96];
       std::snprintf(line, sizeof line, "v %.9g %.9g %.9g\n", v.x, v.y, v.z);
       s += line;
-      f += " " + std::to_string(first++);
+      f += ' ';  // (" " + std::string trips GCC 12's -Wrestrict)
+      f += std::to_string(first++);
     }
     f += "\n";
   }
