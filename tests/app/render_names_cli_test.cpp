@@ -12,7 +12,7 @@ namespace {
 class RenderNamesCli : public CliFixture {};
 
 TEST_F(RenderNamesCli, BadOptionNamesTheOption) {
-  for (const std::string& option :
+  for (const std::string option :
        {"--accel octopus", "--integrator pathh", "--sampler halton", "--filter sinc"}) {
     EXPECT_NE(run("render " + scene("cornell-box.json") + " " + option + " -o " + path("o.pfm")),
               0);
