@@ -15,10 +15,6 @@ using nlohmann::json;
 // pbrt-v4's defaults when a directive is absent.
 constexpr int kDefaultWidth = 1280, kDefaultHeight = 720, kDefaultSpp = 16, kDefaultDepth = 5;
 
-std::string fmt_num(double v) {
-  return pbrt_format_number(v);
-}
-
 void map_film(const std::optional<PbrtEntity>& film, SceneDesc& scene) {
   RenderSettings& r = scene.render;
   r.width = kDefaultWidth, r.height = kDefaultHeight;
@@ -104,15 +100,16 @@ void map_filter(const std::optional<PbrtEntity>& filter, SceneDesc& scene) {
   if (rx != ry) {
     radius = std::max(rx, ry);
     pbrt_warn(scene.warnings, f.loc,
-              "PixelFilter radii " + fmt_num(rx) + " and " + fmt_num(ry) +
-                  " differ; penumbra's filters have one radius, " + fmt_num(radius) + " is used");
+              "PixelFilter radii " + pbrt_format_number(rx) + " and " + pbrt_format_number(ry) +
+                  " differ; penumbra's filters have one radius, " + pbrt_format_number(radius) +
+                  " is used");
   }
   if (!(radius >= 0.01 && radius <= 16)) f.loc.fail("filter radius must lie in [0.01, 16]");
-  std::string s = std::string(d.ours) + ":radius=" + fmt_num(radius);
-  if (f.type == "gaussian") s += ",sigma=" + fmt_num(f.params.get_float("sigma", 0.5));
+  std::string s = std::string(d.ours) + ":radius=" + pbrt_format_number(radius);
+  if (f.type == "gaussian") s += ",sigma=" + pbrt_format_number(f.params.get_float("sigma", 0.5));
   if (f.type == "mitchell")
-    s += ",b=" + fmt_num(f.params.get_float("B", 1.0 / 3.0)) +
-         ",c=" + fmt_num(f.params.get_float("C", 1.0 / 3.0));
+    s += ",b=" + pbrt_format_number(f.params.get_float("B", 1.0 / 3.0)) +
+         ",c=" + pbrt_format_number(f.params.get_float("C", 1.0 / 3.0));
   if (f.type == "sinc") {
     f.params.get_float("tau", 3.0);
     pbrt_warn(scene.warnings, f.loc,
@@ -188,8 +185,8 @@ void map_camera(const PbrtOptions& o, const Transform& world_from_pbrt, SceneDes
     close = c.params.get_float("shutterclose", 1);
     if (close < open) {  // as pbrt-v4
       pbrt_warn(scene.warnings, c.loc,
-                "shutterclose " + fmt_num(close) + " is before shutteropen " + fmt_num(open) +
-                    "; they are swapped");
+                "shutterclose " + pbrt_format_number(close) + " is before shutteropen " +
+                    pbrt_format_number(open) + "; they are swapped");
       std::swap(open, close);
     }
     c.params.report_unused(scene.warnings, c.what("Camera"));
