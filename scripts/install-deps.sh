@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # Installs penumbra's build and test dependencies from Debian 12 packages. Idempotent: packages
 # already installed are not fetched again, so a second run needs no network.
+#   scripts/install-deps.sh          what the build and the tests need
+#   scripts/install-deps.sh --fuzz   also clang with libFuzzer and the sanitizer runtimes, for
+#                                    scripts/fuzz.sh (the CI's fuzz step)
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -10,6 +13,12 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev   # optional: only the accel-bench comparison row uses it
 )
+if [[ ${1:-} == --fuzz ]]; then
+  packages+=(clang libclang-rt-14-dev)  # Debian 12's clang 14; libFuzzer is in the runtime package
+elif [[ -n ${1:-} ]]; then
+  echo "install-deps.sh: unknown option '$1' (valid: --fuzz)" >&2
+  exit 2
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
