@@ -199,7 +199,17 @@ TEST_F(CliTest, AccelBenchRepeatsAndPairsRunsWithEmbree) {
         EXPECT_GT(r[key].get<double>(), 0.0) << key;
       }
     }
+    // The structure's own counts per incoherent ray (not Embree's, which does not count).
+    const bool ours = row["accel"] != "embree";
+    EXPECT_EQ(row.contains("nodes_per_ray"), ours) << row.dump();
+    EXPECT_EQ(row.contains("prims_per_ray"), ours) << row.dump();
+    if (ours) {
+      EXPECT_GT(row["nodes_per_ray"].get<double>(), 0.0);
+      EXPECT_GT(row["prims_per_ray"].get<double>(), 0.0);
+      EXPECT_LE(row["prims_per_ray"].get<double>(), 38.0);  // the box's 38 triangles at most
+    }
   }
+  EXPECT_NE(out_.find("per incoherent ray:"), std::string::npos) << out_;
   for (const char* bad : {"0", "x", "101"})
     EXPECT_NE(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --repeat " + bad), 0)
         << bad;

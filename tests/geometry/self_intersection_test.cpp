@@ -1,12 +1,42 @@
 // Rays leaving a surface must never hit that surface again (no shadow acne).
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
 #include "penumbra/core/rng.h"
 #include "penumbra/geometry/float_error.h"
 #include "penumbra/geometry/triangle.h"
 
 namespace penumbra {
 namespace {
+
+// The bit-pattern successors agree with std::nextafter on every kind of float: zeros of both
+// signs, denormals, the largest finite values, infinities, NaNs, and random bit patterns.
+TEST(NextFloat, MatchesNextafterOnEveryKindOfFloat) {
+  constexpr float inf = std::numeric_limits<float>::infinity();
+  std::vector<uint32_t> bits = {0x00000000u, 0x80000000u, 0x00000001u, 0x80000001u, 0x007fffffu,
+                                0x807fffffu, 0x00800000u, 0x80800000u, 0x3f800000u, 0xbf800000u,
+                                0x7f7fffffu, 0xff7fffffu, 0x7f800000u, 0xff800000u, 0x7fc00000u,
+                                0xffc00000u, 0x7f800001u, 0xff800001u, 0x7fffffffu};
+  Pcg32 rng(11);
+  for (int i = 0; i < 1000000; ++i) bits.push_back(rng.next_u32());
+  for (const uint32_t b : bits) {
+    const float v = std::bit_cast<float>(b);
+    const float up = next_float_up(v), down = next_float_down(v);
+    if (std::isnan(v)) {
+      EXPECT_TRUE(std::isnan(up) && std::isnan(down)) << std::hex << b;
+      continue;
+    }
+    ASSERT_EQ(std::bit_cast<uint32_t>(up), std::bit_cast<uint32_t>(std::nextafter(v, inf)))
+        << std::hex << b;
+    ASSERT_EQ(std::bit_cast<uint32_t>(down), std::bit_cast<uint32_t>(std::nextafter(v, -inf)))
+        << std::hex << b;
+  }
+}
 
 // Points exactly on an axis-aligned wall (x = 0, like the Cornell box's green wall) get no offset
 // from their (zero) error bound; the triangle test's own bound on t must reject the re-hit.

@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "penumbra/accel/traversal_cost.h"
 #include "penumbra/core/ray.h"
 #include "penumbra/geometry/hit.h"
 #include "penumbra/geometry/primitive_set.h"
@@ -41,6 +42,9 @@ class Accelerator {
   virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
   /// True when anything is hit on (ray.tmin, ray.tmax).
   virtual bool occluded(const Ray& ray) const = 0;
+  /// intersect, adding to `cost` the nodes it visited and the primitives it tested (the same
+  /// traversal as intersect, instantiated with counting; intersect itself counts nothing).
+  virtual bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const = 0;
   /// Statistics of the last build.
   virtual AccelStats stats() const = 0;
 };

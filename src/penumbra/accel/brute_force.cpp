@@ -28,6 +28,17 @@ bool BruteForce::intersect(const Ray& ray, Hit& hit) const {
   return hit.valid();
 }
 
+bool BruteForce::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray)) return false;
+  const PreparedRay pr(ray);
+  cost.nodes += 1;  // the one "leaf": every primitive
+  cost.prims += valid_.size();
+  for (uint32_t id : valid_) prims_->intersect(id, pr, hit);
+  return hit.valid();
+}
+
 bool BruteForce::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   const PreparedRay pr(ray);

@@ -14,6 +14,7 @@ class BruteForce final : public Accelerator {
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
  private:

@@ -100,12 +100,13 @@ void BspTree::build(const PrimitiveSet& prims) {
   stats_.build_ms = timer.elapsed_ms();
 }
 
-template <bool kAnyHit, bool kTriangles>
-bool BspTree::test_refs(const BspNode& node, const PreparedRay& pr, float lo, float hi,
-                        Hit& hit) const {
+template <bool kAnyHit, bool kTriangles, class Cost>
+bool BspTree::test_refs(const BspNode& node, const PreparedRay& pr, float lo, float hi, Hit& hit,
+                        Cost cost) const {
   const float upper = hi + std::fabs(hi) * 0x1p-22f;  // a little wider: it may only accept more
   bool found = false;
   for (uint32_t i = node.first; i < node.first + node.count; ++i) {
+    cost.prims(1);
     const float tmax = std::min(hit.t, upper);
     bool h;
     if constexpr (kTriangles) {
@@ -127,8 +128,8 @@ bool BspTree::test_refs(const BspNode& node, const PreparedRay& pr, float lo, fl
   return found;
 }
 
-template <bool kAnyHit, bool kTriangles>
-bool BspTree::traverse(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, bool kTriangles, class Cost>
+bool BspTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   const Ray& ray = pr.ray;
   const float eps = float(kBspTraversalEps) * (scale_ + max_component(abs(ray.o)));
   float t0, t1;
@@ -140,9 +141,10 @@ bool BspTree::traverse(const PreparedRay& pr, Hit& hit) const {
   while (true) {
     {
       const BspNode& node = tree_.nodes[index];
+      cost.node();
       if (node.is_leaf()) {
         // Objects, or the fragments left by the depth cap: the whole ray, as brute force does.
-        if (test_refs<kAnyHit, kTriangles>(node, pr, -kInfinity, kInfinity, hit)) {
+        if (test_refs<kAnyHit, kTriangles>(node, pr, -kInfinity, kInfinity, hit, cost)) {
           if constexpr (kAnyHit) return true;
           found = true;
         }
@@ -176,7 +178,8 @@ bool BspTree::traverse(const PreparedRay& pr, Hit& hit) const {
       // Both parts non-empty: the ray comes within eps of the plane on [far_t0, near_t1].
       const bool on_plane = in_near && in_far && node.count != 0;
       if constexpr (kAnyHit) {
-        if (on_plane && test_refs<true, kTriangles>(node, pr, far_t0, near_t1, hit)) return true;
+        if (on_plane && test_refs<true, kTriangles>(node, pr, far_t0, near_t1, hit, cost))
+          return true;
       }
       const bool go_near = in_near && near != kBspEmpty, go_far = in_far && far != kBspEmpty;
       if (go_near) {  // near child now; the plane, then the far child, when it returns
@@ -185,7 +188,8 @@ bool BspTree::traverse(const PreparedRay& pr, Hit& hit) const {
         index = near, t1 = near_t1;
         continue;
       }
-      if (!kAnyHit && on_plane && test_refs<false, kTriangles>(node, pr, far_t0, near_t1, hit))
+      if (!kAnyHit && on_plane &&
+          test_refs<false, kTriangles>(node, pr, far_t0, near_t1, hit, cost))
         found = true;
       if (go_far && far_t0 <= hit.t) {
         index = far, t0 = far_t0, t1 = std::min(t1, hit.t);
@@ -199,7 +203,8 @@ bool BspTree::traverse(const PreparedRay& pr, Hit& hit) const {
       const StackEntry e = stack[--sp];
       if (e.t0 > hit.t) continue;
       if (e.node & kPlaneTask) {
-        if (test_refs<false, kTriangles>(tree_.nodes[e.node & ~kPlaneTask], pr, e.t0, e.t1, hit))
+        if (test_refs<false, kTriangles>(tree_.nodes[e.node & ~kPlaneTask], pr, e.t0, e.t1, hit,
+                                     cost))
           found = true;
         continue;
       }
@@ -216,6 +221,15 @@ bool BspTree::intersect(const Ray& ray, Hit& hit) const {
   if (tree_.nodes.empty()) return false;
   const PreparedRay pr(ray);
   return tris_.empty() ? traverse<false, false>(pr, hit) : traverse<false, true>(pr, hit);
+}
+
+bool BspTree::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray) || tree_.nodes.empty()) return false;
+  const PreparedRay pr(ray);
+  const CostCounter c{&cost};
+  return tris_.empty() ? traverse<false, false>(pr, hit, c) : traverse<false, true>(pr, hit, c);
 }
 
 bool BspTree::occluded(const Ray& ray) const {

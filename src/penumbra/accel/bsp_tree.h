@@ -40,6 +40,7 @@ class BspTree final : public Accelerator {
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
   /// The nodes, root at 0 (empty when nothing was built).
@@ -50,11 +51,12 @@ class BspTree final : public Accelerator {
   const BspBuildParams& build_params() const { return params_; }
 
  private:
-  template <bool kAnyHit, bool kTriangles>
-  bool traverse(const PreparedRay& pr, Hit& hit) const;
+  template <bool kAnyHit, bool kTriangles, class Cost = NoCost>
+  bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
   /// Tests the node's references, keeping only hits with t in [lo, hi] (and below hit.t).
-  template <bool kAnyHit, bool kTriangles>
-  bool test_refs(const BspNode& node, const PreparedRay& pr, float lo, float hi, Hit& hit) const;
+  template <bool kAnyHit, bool kTriangles, class Cost>
+  bool test_refs(const BspNode& node, const PreparedRay& pr, float lo, float hi, Hit& hit,
+                 Cost cost) const;
 
   std::string name_;
   BspBuildParams params_;

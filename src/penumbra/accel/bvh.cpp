@@ -29,13 +29,15 @@ void Bvh::build(const PrimitiveSet& prims) {
   stats_.build_ms = timer.elapsed_ms();
 }
 
-template <bool kAnyHit, bool kTriangles>
-bool Bvh::traverse(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, bool kTriangles, class Cost>
+bool Bvh::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   // Leaf: test its primitives; each hit shrinks hit.t.
   return walk_bvh<kAnyHit>(
-      nodes_, BvhRay(pr), pr.ray.tmin, hit, [&](uint32_t index, uint32_t count) {
-        return leaf_.intersect<kAnyHit, kTriangles>(*prims_, pr, index, count, hit);
-      });
+      nodes_, BvhRay(pr), pr.ray.tmin, hit,
+      [&](uint32_t index, uint32_t count) {
+        return leaf_.intersect<kAnyHit, kTriangles>(*prims_, pr, index, count, hit, cost);
+      },
+      cost);
 }
 
 bool Bvh::intersect(const Ray& ray, Hit& hit) const {
@@ -45,6 +47,15 @@ bool Bvh::intersect(const Ray& ray, Hit& hit) const {
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   return leaf_.triangles() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
+}
+
+bool Bvh::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray) || nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  const CostCounter c{&cost};
+  return leaf_.triangles() ? traverse<false, true>(pr, hit, c) : traverse<false, false>(pr, hit, c);
 }
 
 bool Bvh::occluded(const Ray& ray) const {

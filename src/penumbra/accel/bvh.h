@@ -29,6 +29,7 @@ class Bvh final : public Accelerator {
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
   /// The nodes: root at 0, padding at 1, child pairs from 2 (empty when nothing was built).
@@ -37,8 +38,8 @@ class Bvh final : public Accelerator {
   std::span<const uint32_t> leaf_prims() const { return leaf_.ids(); }
 
  private:
-  template <bool kAnyHit, bool kTriangles>
-  bool traverse(const PreparedRay& pr, Hit& hit) const;
+  template <bool kAnyHit, bool kTriangles, class Cost = NoCost>
+  bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
 
   std::string name_;
   BvhBuildParams params_;

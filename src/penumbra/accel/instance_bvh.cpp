@@ -72,13 +72,13 @@ void InstanceBvh::build(std::vector<InstancedObject> objects, std::vector<Instan
   stats_.build_ms = timer.elapsed_ms();
 }
 
-template <bool kAnyHit>
-bool InstanceBvh::traverse(const Ray& ray, Hit& hit) const {
+template <bool kAnyHit, class Cost>
+bool InstanceBvh::traverse(const Ray& ray, Hit& hit, Cost cost) const {
   // Bvh's walk; a leaf's "primitives" are instances, each tested by its bottom-level structure
   // on the ray carried into its object space, on (tmin, closest so far): one indirect call per
   // instance visited.
   const PreparedRay pr(ray);
-  return walk_bvh<kAnyHit>(nodes_, BvhRay(pr), ray.tmin, hit, [&](uint32_t index, uint32_t count) {
+  const auto leaf = [&](uint32_t index, uint32_t count) {
     bool found = false;
     for (uint32_t k = index; k < index + count; ++k) {
       const uint32_t id = leaf_ids_[k];
@@ -89,7 +89,12 @@ bool InstanceBvh::traverse(const Ray& ray, Hit& hit) const {
         if (bottom.occluded(local)) return true;
       } else {
         Hit h;
-        if (bottom.intersect(local, h) && h.t < hit.t) {
+        bool any;
+        if constexpr (Cost::kCounts)
+          any = bottom.intersect_cost(local, h, *cost.cost);
+        else
+          any = bottom.intersect(local, h);
+        if (any && h.t < hit.t) {
           hit = h;
           hit.instance = id;
           found = true;
@@ -97,7 +102,8 @@ bool InstanceBvh::traverse(const Ray& ray, Hit& hit) const {
       }
     }
     return found;
-  });
+  };
+  return walk_bvh<kAnyHit>(nodes_, BvhRay(pr), ray.tmin, hit, leaf, cost);
 }
 
 bool InstanceBvh::intersect(const Ray& ray, Hit& hit) const {
@@ -105,6 +111,13 @@ bool InstanceBvh::intersect(const Ray& ray, Hit& hit) const {
   hit.t = ray.tmax;
   if (!traceable(ray) || nodes_.empty()) return false;
   return traverse<false>(ray, hit);
+}
+
+bool InstanceBvh::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray) || nodes_.empty()) return false;
+  return traverse<false>(ray, hit, CostCounter{&cost});
 }
 
 bool InstanceBvh::occluded(const Ray& ray) const {

@@ -40,6 +40,8 @@ class InstanceBvh {
   bool intersect(const Ray& ray, Hit& hit) const;
   /// True when any instance blocks `ray` on (ray.tmin, ray.tmax).
   bool occluded(const Ray& ray) const;
+  /// intersect, adding the top level's nodes and each visited instance's bottom-level cost.
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const;
 
   /// The instances, in the order given to build().
   const std::vector<Instance>& instances() const { return instances_; }
@@ -51,8 +53,8 @@ class InstanceBvh {
   AccelStats stats() const { return stats_; }
 
  private:
-  template <bool kAnyHit>
-  bool traverse(const Ray& ray, Hit& hit) const;
+  template <bool kAnyHit, class Cost = NoCost>
+  bool traverse(const Ray& ray, Hit& hit, Cost cost = {}) const;
 
   std::vector<InstancedObject> objects_;
   std::vector<Instance> instances_;

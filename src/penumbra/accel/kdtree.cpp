@@ -155,8 +155,8 @@ void KdTree::build(const PrimitiveSet& prims) {
   stats_.build_ms = timer.elapsed_ms();
 }
 
-template <bool kAnyHit, bool kTriangles>
-bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, bool kTriangles, class Cost>
+bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   // Per-ray values in arrays: Vec3's operator[] is a chain of selects, too slow per node.
   const float o[3] = {pr.ray.o.x, pr.ray.o.y, pr.ray.o.z};
   const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
@@ -187,6 +187,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
     // (tmin, tmax); a ray lying in the plane (0 * inf = NaN) visits both with the whole interval.
     KdNode n = nodes[index];
     while (!n.is_leaf()) {
+      cost.node();
       const int axis = n.axis();
       const float tp = (n.split() - o[axis]) * inv[axis];
       const uint32_t below = index + 1, above = n.above();
@@ -230,6 +231,8 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit) const {
       n = nodes[index];
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
+    cost.node();
+    cost.prims(n.count());
     if constexpr (kTriangles) {
       // Blocks of four, tested four at a time (bit for bit the scalar test in reference order).
       if (blocks_.intersect<kAnyHit>(block_ray, n.first() / 4, n.count(), hit)) {
@@ -263,6 +266,16 @@ bool KdTree::intersect(const Ray& ray, Hit& hit) const {
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   return blocks_.size() == 0 ? traverse<false, false>(pr, hit) : traverse<false, true>(pr, hit);
+}
+
+bool KdTree::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray) || nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  const CostCounter c{&cost};
+  return blocks_.size() == 0 ? traverse<false, false>(pr, hit, c)
+                             : traverse<false, true>(pr, hit, c);
 }
 
 bool KdTree::occluded(const Ray& ray) const {

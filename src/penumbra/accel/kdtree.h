@@ -46,6 +46,7 @@ class KdTree final : public Accelerator {
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
   /// The settings in use.
@@ -59,8 +60,8 @@ class KdTree final : public Accelerator {
   const Bounds3& bounds() const { return bounds_; }
 
  private:
-  template <bool kAnyHit, bool kTriangles>
-  bool traverse(const PreparedRay& pr, Hit& hit) const;
+  template <bool kAnyHit, bool kTriangles, class Cost = NoCost>
+  bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
 
   std::string name_;
   KdBuildParams params_;

@@ -8,6 +8,7 @@
 
 #include "penumbra/accel/build/array_allocator.h"
 #include "penumbra/accel/build/prim_ref.h"
+#include "penumbra/accel/traversal_cost.h"
 #include "penumbra/geometry/primitive_set.h"
 
 namespace penumbra {
@@ -30,12 +31,14 @@ class LeafPrims {
 
   /// Tests the `count` primitives from leaf slot `first` on (tmin, hit.t), updating `hit`.
   /// kTriangles: use the copied vertices (requires triangles()); otherwise PrimitiveSet's test.
-  /// kAnyHit: return at the first hit. Returns true when anything was hit.
-  template <bool kAnyHit, bool kTriangles>
+  /// kAnyHit: return at the first hit. Returns true when anything was hit. `cost` counts the
+  /// primitives tested.
+  template <bool kAnyHit, bool kTriangles, class Cost = NoCost>
   bool intersect(const PrimitiveSet& prims, const PreparedRay& pr, uint32_t first, uint32_t count,
-                 Hit& hit) const {
+                 Hit& hit, Cost cost = {}) const {
     bool found = false;
     for (uint32_t i = first; i < first + count; ++i) {
+      cost.prims(1);
       bool h;
       if constexpr (kTriangles) {
         const Vec3* v = &tris_[3 * size_t(i)];

@@ -339,8 +339,8 @@ void Octree::build(const PrimitiveSet& prims) {
   stats_.build_ms = timer.elapsed_ms();
 }
 
-template <bool kAnyHit, bool kTriangles, int kMailbox>
-bool Octree::traverse(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, bool kTriangles, int kMailbox, class Cost>
+bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   const Ray& ray = pr.ray;
   // 1. Clip the ray to the root cube (slab test; a NaN term, from a zero direction component
   // with the origin on a face plane, is ignored: the ray lies in the closed slab).
@@ -365,6 +365,7 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit) const {
   bool found = false;
   while (true) {
     const OctreeNode node = nodes_[cur.node];
+    cost.node();
     if (node.inner()) {
       // 2. Inner node: the octant the ray is in at t0 and where it leaves it.
       const float h = half_[cur.depth];
@@ -386,7 +387,8 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit) const {
       // 3. Leaf: test its primitives. A hit at or before the leaf's exit is the closest (all
       // later nodes start beyond it); a hit beyond is kept (hit.t shrinks) and the walk goes on.
       if (test_mailboxed<kAnyHit, kTriangles>(*prims_, ids_.data(), tris_.data(), node.index,
-                                              node.index + node.count(), pr, hit, mailbox)) {
+                                              node.index + node.count(), pr, hit, mailbox,
+                                              cost)) {
         if constexpr (kAnyHit) return true;
         found = true;
       }
@@ -398,10 +400,10 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit) const {
   }
 }
 
-template <bool kAnyHit>
-bool Octree::dispatch(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, class Cost>
+bool Octree::dispatch(const PreparedRay& pr, Hit& hit, Cost cost) const {
   return dispatch_mailbox(mailbox_, !tris_.empty(), [&](auto triangles, auto size) {
-    return traverse<kAnyHit, decltype(triangles)::value, decltype(size)::value>(pr, hit);
+    return traverse<kAnyHit, decltype(triangles)::value, decltype(size)::value>(pr, hit, cost);
   });
 }
 
@@ -411,6 +413,13 @@ bool Octree::intersect(const Ray& ray, Hit& hit) const {
   if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   return dispatch<false>(PreparedRay(ray), hit);
+}
+
+bool Octree::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray) || nodes_.empty()) return false;
+  return dispatch<false>(PreparedRay(ray), hit, CostCounter{&cost});
 }
 
 bool Octree::occluded(const Ray& ray) const {

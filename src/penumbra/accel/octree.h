@@ -69,6 +69,7 @@ class Octree final : public Accelerator {
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
   /// The nodes, root at 0 (empty when nothing was built).
@@ -84,10 +85,10 @@ class Octree final : public Accelerator {
   float size_at(int depth) const { return half_[depth] * 2.0f; }
 
  private:
-  template <bool kAnyHit, bool kTriangles, int kMailbox>
-  bool traverse(const PreparedRay& pr, Hit& hit) const;
-  template <bool kAnyHit>
-  bool dispatch(const PreparedRay& pr, Hit& hit) const;
+  template <bool kAnyHit, bool kTriangles, int kMailbox, class Cost = NoCost>
+  bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
+  template <bool kAnyHit, class Cost = NoCost>
+  bool dispatch(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
 
   std::string name_;
   int leaf_size_ = 16;

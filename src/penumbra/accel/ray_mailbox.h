@@ -13,6 +13,7 @@
 
 #include <fmt/format.h>
 
+#include "penumbra/accel/traversal_cost.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/params.h"
 #include "penumbra/geometry/hit.h"
@@ -53,15 +54,17 @@ class RayMailbox<0> {
 /// Tests the references [begin, end) of a cell or leaf on (ray.tmin, hit.t), skipping ids the
 /// mailbox has seen; updates `hit` and returns true when anything was hit (kAnyHit: at the first
 /// hit). kTriangles: the set holds only triangles and `tris` their vertices in reference order
-/// (three per reference), so the leaf streams through memory and skips the kind switch.
-template <bool kAnyHit, bool kTriangles, int kSize>
+/// (three per reference), so the leaf streams through memory and skips the kind switch. `cost`
+/// counts the primitives tested (not those the mailbox skipped).
+template <bool kAnyHit, bool kTriangles, int kSize, class Cost = NoCost>
 inline bool test_mailboxed(const PrimitiveSet& prims, const uint32_t* ids, const Vec3* tris,
                            uint32_t begin, uint32_t end, const PreparedRay& pr, Hit& hit,
-                           RayMailbox<kSize>& mailbox) {
+                           RayMailbox<kSize>& mailbox, Cost cost = {}) {
   bool found = false;
   for (uint32_t i = begin; i < end; ++i) {
     const uint32_t id = ids[i];
     if (!mailbox.first_visit(id)) continue;
+    cost.prims(1);
     bool h;
     if constexpr (kTriangles) {
       const Vec3* v = tris + 3 * size_t(i);

@@ -266,8 +266,8 @@ void UniformGrid::build(const PrimitiveSet& prims) {
   stats_.build_ms = timer.elapsed_ms();
 }
 
-template <bool kAnyHit, bool kTriangles, int kMailbox>
-bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, bool kTriangles, int kMailbox, class Cost>
+bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   const Ray& ray = pr.ray;
   // 1. Clip the ray to the grid box (slab test). With a zero direction component and the origin
   // on a face plane, (plane - o) * inv is NaN; comparisons with NaN are false, so that term is
@@ -313,10 +313,11 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit) const {
   RayMailbox<kMailbox> mailbox;
   bool found = false;
   while (true) {
+    cost.node();
     // The occupancy bits (one cache line per 512 cells) spare empty cells the offsets' miss.
     if ((occupied_[idx >> 6] >> (idx & 63) & 1u) &&
         test_mailboxed<kAnyHit, kTriangles>(*prims_, ids_.data(), tris_.data(), offsets_[idx],
-                                            offsets_[idx + 1], pr, hit, mailbox)) {
+                                            offsets_[idx + 1], pr, hit, mailbox, cost)) {
       if constexpr (kAnyHit) return true;
       found = true;
     }
@@ -331,10 +332,10 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit) const {
   }
 }
 
-template <bool kAnyHit>
-bool UniformGrid::dispatch(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, class Cost>
+bool UniformGrid::dispatch(const PreparedRay& pr, Hit& hit, Cost cost) const {
   return dispatch_mailbox(mailbox_, !tris_.empty(), [&](auto triangles, auto size) {
-    return traverse<kAnyHit, decltype(triangles)::value, decltype(size)::value>(pr, hit);
+    return traverse<kAnyHit, decltype(triangles)::value, decltype(size)::value>(pr, hit, cost);
   });
 }
 
@@ -344,6 +345,13 @@ bool UniformGrid::intersect(const Ray& ray, Hit& hit) const {
   if (!traceable(ray)) return false;
   if (ids_.empty()) return false;
   return dispatch<false>(PreparedRay(ray), hit);
+}
+
+bool UniformGrid::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray) || ids_.empty()) return false;
+  return dispatch<false>(PreparedRay(ray), hit, CostCounter{&cost});
 }
 
 bool UniformGrid::occluded(const Ray& ray) const {

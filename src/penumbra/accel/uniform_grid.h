@@ -62,6 +62,7 @@ class UniformGrid final : public Accelerator {
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
   /// Cells per axis of the last build (0 when nothing was built).
@@ -84,10 +85,10 @@ class UniformGrid final : public Accelerator {
   void for_each_cell(const PrimitiveSet& prims, const PrimRef& r, F&& f) const;
   /// The count and fill passes into the CSR arrays, the occupancy bits and the copied triangles.
   void fill_cells(const PrimitiveSet& prims, std::span<const PrimRef> refs);
-  template <bool kAnyHit, bool kTriangles, int kMailbox>
-  bool traverse(const PreparedRay& pr, Hit& hit) const;
-  template <bool kAnyHit>
-  bool dispatch(const PreparedRay& pr, Hit& hit) const;
+  template <bool kAnyHit, bool kTriangles, int kMailbox, class Cost = NoCost>
+  bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
+  template <bool kAnyHit, class Cost = NoCost>
+  bool dispatch(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
 
   std::string name_;
   double lambda_ = 1.0;

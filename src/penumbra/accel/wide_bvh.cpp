@@ -181,8 +181,8 @@ void WideBvh<W>::make_blocks(const PrimitiveSet& prims, std::span<const PrimRef>
 }
 
 template <int W>
-template <bool kAnyHit, bool kTriangles>
-bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
+template <bool kAnyHit, bool kTriangles, class Cost>
+bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   using F = FloatW<W>;
   // Per-ray values: origin, 1/d (scaled up for exit distances, Pharr et al., "Physically Based
   // Rendering", 3rd ed., section 3.9.2) and the near-plane rows chosen by the direction signs.
@@ -219,6 +219,7 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
       // never rejects a box; the running bounds start from the ray interval and each plane's
       // distance enters as the first operand.
       const WideNode<W>& n = nodes_[child];
+      cost.node();
       // The children's indices lie on another cache line than the boxes; which one is needed
       // depends on the box test, so fetch the line now rather than after it (two misses in
       // parallel instead of one after the other).
@@ -286,10 +287,13 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit) const {
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
     bool leaf_hit;
-    if constexpr (kTriangles)
+    cost.node();
+    if constexpr (kTriangles) {
+      cost.prims(count);
       leaf_hit = blocks_.intersect<kAnyHit>(block_ray, child, count, hit);
-    else
-      leaf_hit = leaf_.intersect<kAnyHit, false>(*prims_, pr, child, count, hit);
+    } else {
+      leaf_hit = leaf_.intersect<kAnyHit, false>(*prims_, pr, child, count, hit, cost);
+    }
     if (leaf_hit) {
       if constexpr (kAnyHit) return true;
       found = true;
@@ -312,6 +316,16 @@ bool WideBvh<W>::intersect(const Ray& ray, Hit& hit) const {
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
   return blocks_.size() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
+}
+
+template <int W>
+bool WideBvh<W>::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  hit = Hit{};
+  hit.t = ray.tmax;
+  if (!traceable(ray) || nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  const CostCounter c{&cost};
+  return blocks_.size() ? traverse<false, true>(pr, hit, c) : traverse<false, false>(pr, hit, c);
 }
 
 template <int W>

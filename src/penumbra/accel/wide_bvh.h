@@ -39,14 +39,15 @@ class WideBvh final : public Accelerator {
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
+  bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
   /// The nodes, root first.
   std::span<const WideNode<W>> nodes() const { return {nodes_.data(), nodes_.size()}; }
 
  private:
-  template <bool kAnyHit, bool kTriangles>
-  bool traverse(const PreparedRay& pr, Hit& hit) const;
+  template <bool kAnyHit, bool kTriangles, class Cost = NoCost>
+  bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
 
   /// Moves the leaves' triangles into blocks and points the leaf children at them.
   void make_blocks(const PrimitiveSet& prims, std::span<const PrimRef> refs);

@@ -404,6 +404,16 @@ void run_accel_bench(const AccelBenchArgs& args) {
         [&](const Ray& r, Hit& h) { return accel->intersect(r, h); },
         [&](const Ray& r) { return accel->occluded(r); }, embree ? &embree_intersect : nullptr,
         embree ? &embree_occluded : nullptr, nullptr);
+    // The structure's own counts over the incoherent rays (a separate, untimed pass).
+    std::vector<TraversalCost> costs(rays.incoherent.size());
+    parallel_for(costs.size(), [&](size_t i) {
+      Hit h;
+      accel->intersect_cost(rays.incoherent[i], h, costs[i]);
+    });
+    TraversalCost total;
+    for (const TraversalCost& c : costs) total += c;
+    const double n = double(std::max<size_t>(1, costs.size()));
+    row.nodes_per_ray = double(total.nodes) / n, row.prims_per_ray = double(total.prims) / n;
     rows.push_back(row);
     accel.reset();  // free its memory before the next build
   }

@@ -31,6 +31,9 @@ struct BenchRow {
   std::vector<BenchRates> rates;        ///< one per thread count, as the table's groups
   std::optional<size_t> mismatches;     ///< incoherent closest hits differing from Embree's
   std::optional<size_t> ties;           ///< of the agreeing ones, another triangle at the same t
+  /// Per incoherent closest-hit query, counted by the structure (intersect_cost, untimed): node
+  /// records visited and primitive tests. Unknown for Embree.
+  std::optional<double> nodes_per_ray, prims_per_ray;
 };
 
 /// Prints the table: build ms (at `build_threads`), MiB, nodes, depth, refs/prim, then primary,

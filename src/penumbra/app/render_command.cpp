@@ -281,6 +281,7 @@ int run_render(const RenderArgs& args) {
                stats.traversal_share * 100.0);
     fmt::print(stderr, "accel {}: {}\n", job.world->accelerator().name(),
                format_accel_stats(accel));
+    if (!stats.note.empty()) fmt::print(stderr, "{}\n", stats.note);
   }
   return 0;
 }

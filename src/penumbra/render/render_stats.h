@@ -61,6 +61,8 @@ struct RenderStats {
   /// Of the worker threads' time in tiles, the share spent in ray traversal and intersection.
   double traversal_share = 0;
   double mean_rel_error = -1;  ///< measured when a target error was set
+  /// A line the integrator adds to the render's summary (the cost view's colour scale), or empty.
+  std::string note;
   /// True unless the render was cancelled (a time limit or an error target is a normal end).
   bool complete() const { return stop != StopReason::kCancelled; }
 };

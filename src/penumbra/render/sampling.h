@@ -1,5 +1,6 @@
 #pragma once
 /// Warping uniform samples to directions and points.
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -40,7 +41,8 @@ inline Vec2 sample_concentric_disk(Vec2 u) {
 /// Cosine-weighted direction on the +z hemisphere (Malley's method); pdf = cos(theta) / pi.
 inline Vec3 sample_cosine_hemisphere(Vec2 u) {
   const Vec2 d = sample_concentric_disk(u);
-  const float z = std::sqrt(std::fmax(0.0f, 1.0f - d.x * d.x - d.y * d.y));
+  // std::max (NaN gives 0, as std::fmax would) compiles to one instruction; fmax is a libm call.
+  const float z = std::sqrt(std::max(0.0f, 1.0f - d.x * d.x - d.y * d.y));
   return {d.x, d.y, z};
 }
 

@@ -266,6 +266,17 @@ bool World::closest_hit(const Ray& ray, Hit& hit) const {
   return true;
 }
 
+bool World::closest_hit_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+  const bool found = accel_->intersect_cost(ray, hit, cost);
+  if (!has_instances()) return found;
+  Ray rest = ray;
+  if (found) rest.tmax = hit.t;
+  Hit h;
+  if (!instanced_.intersect_cost(rest, h, cost)) return found;
+  hit = h;
+  return true;
+}
+
 bool World::intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const {
   Hit hit;
   bool found;

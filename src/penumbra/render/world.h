@@ -46,6 +46,9 @@ class World {
 
   /// Closest hit record along `ray` (scene primitives and instances); true when there is one.
   bool closest_hit(const Ray& ray, Hit& hit) const;
+  /// closest_hit, adding to `cost` the work of every structure it asked (the scene's, the top
+  /// level over instances and the instances' own): the cost view's query.
+  bool closest_hit_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const;
   /// Closest hit along `ray`; fills `si` and returns true when there is one.
   bool intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const;
   /// True when something blocks `ray` on (tmin, tmax).

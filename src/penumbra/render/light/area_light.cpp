@@ -140,17 +140,6 @@ float AreaLight::prim_pmf(uint32_t prim) const {
   return i < pmf_.size() ? pmf_[i] : 0.0f;
 }
 
-uint32_t AreaLight::pick(float u, float& u_remapped) const {
-  // Invert the CDF, then stretch the step that u fell in back to [0, 1): the map from [0,1)^2 to
-  // the surface stays continuous and area-preserving, so stratified u stay stratified.
-  const size_t n = cdf_.size();
-  const size_t i =
-      std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()), n - 1);
-  const float lo = i ? cdf_[i - 1] : 0.0f;
-  u_remapped = std::clamp((u - lo) / pmf_[i], 0.0f, kOneMinusEpsilon);
-  return uint32_t(i);
-}
-
 void AreaLight::sample_area(uint32_t local, Vec2 u, Vec3& q, Vec3& n) const {
   const uint32_t id = first_prim_ + local;
   const PrimitiveSet& prims = world_.primitives();
@@ -206,8 +195,9 @@ float AreaLight::area_density(uint32_t local, Vec3 p, Vec3 q, Vec3 n) const {
 LightSample AreaLight::sample_li(Vec3 p, Vec2 u) const {
   if (pmf_.empty()) return {};
   // The primitive by area, then a point of it by its own strategy.
-  Vec2 v{0.0f, u.y};
-  const uint32_t local = pick(u.x, v.x);
+  const Picked pk = pick(u.x);
+  const uint32_t local = pk.local;
+  const Vec2 v{pk.u, u.y};
   const uint32_t id = first_prim_ + local;
   const PrimitiveSet& prims = world_.primitives();
   LightSample ls;
@@ -279,8 +269,9 @@ Rgb AreaLight::l(const LightPoint& hit, Vec3 w) const {
 LightLeSample AreaLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) const {
   LightLeSample s;
   if (pmf_.empty()) return s;
-  Vec2 v{0.0f, u_pos.y};
-  const uint32_t local = pick(u_pos.x, v.x);
+  const Picked pk = pick(u_pos.x);
+  const uint32_t local = pk.local;
+  const Vec2 v{pk.u, u_pos.y};
   Vec3 q, n;
   sample_area(local, v, q, n);
   // Two-sided: the side by the first coordinate, reused as a fresh uniform number.

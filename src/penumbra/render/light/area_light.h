@@ -1,6 +1,7 @@
 #pragma once
 /// Area lights: the emissive shapes of the scene, sampled by solid angle where that is cheap and
 /// exact (spheres, rectangles) and by area elsewhere.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -52,8 +53,22 @@ class AreaLight final : public Light {
   float prim_pmf(uint32_t prim) const;
 
  private:
-  /// Local index (prim id - first_prim_) of the primitive for u, and u's remainder, uniform.
-  uint32_t pick(float u, float& u_remapped) const;
+  /// The primitive chosen by a number u and u's remainder, uniform in [0, 1).
+  struct Picked {
+    uint32_t local;  ///< prim id - first_prim_
+    float u;
+  };
+  /// Inverts the CDF, then stretches the step that u fell in back to [0, 1): the map from
+  /// [0, 1)^2 to the surface stays continuous and area-preserving, so stratified u stay
+  /// stratified. Inline: an out-of-line call, with its remainder returned through memory, cost
+  /// 2 % of a Cornell box render.
+  Picked pick(float u) const {
+    const size_t n = cdf_.size();
+    const size_t i =
+        std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()), n - 1);
+    const float lo = i ? cdf_[i - 1] : 0.0f;
+    return {uint32_t(i), std::clamp((u - lo) / pmf_[i], 0.0f, 0x1.fffffep-1f)};
+  }
   /// A uniform point q on primitive `local` by area, with its unit front normal n.
   void sample_area(uint32_t local, Vec2 u, Vec3& q, Vec3& n) const;
   /// True when the receiver at p sees primitive `local` by its solid-angle strategy.
