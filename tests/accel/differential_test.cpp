@@ -340,12 +340,7 @@ TEST_P(AccelDifferential, StatsAreConsistent) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, AccelDifferential, ::testing::ValuesIn(structure_names()),
-                         [](const auto& info) {
-                           std::string s = info.param;
-                           for (char& ch : s)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return s;
-                         });
+                         [](const auto& info) { return structure_test_name(info.param); });
 
 /// The occlusion reference above is derived from closest hits; check that derivation on brute.
 TEST(BruteForce, OccludedAgreesWithClosestHit) {

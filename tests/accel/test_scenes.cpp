@@ -1,5 +1,6 @@
 #include "test_scenes.h"
 
+#include <cctype>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -385,6 +386,17 @@ std::vector<Ray> mixed_rays(const PrimitiveSet& prims, size_t n, uint64_t seed) 
     }
   }
   return rays;
+}
+
+}  // namespace penumbra::test
+
+namespace penumbra::test {
+
+std::string structure_test_name(const std::string& name) {
+  std::string s = name;
+  for (char& ch : s)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return s;
 }
 
 }  // namespace penumbra::test

@@ -54,6 +54,10 @@ void set_random_times(std::vector<Ray>& rays, uint64_t seed);
 /// along box and triangle planes). tmin = 0, tmax = infinity.
 std::vector<Ray> mixed_rays(const PrimitiveSet& prims, size_t n, uint64_t seed);
 
+/// A structure's name made a valid test name (every character but letters and digits as '_'),
+/// for INSTANTIATE_TEST_SUITE_P over the registry.
+std::string structure_test_name(const std::string& name);
+
 /// A point on primitive `id` (random barycentric / surface coordinates from u1, u2), at time 0
 /// for a moving primitive.
 Vec3 point_on(const PrimitiveSet& prims, uint32_t id, float u1, float u2);

@@ -78,12 +78,7 @@ TEST_P(TraversalCostTest, TestsFarFewerPrimitivesThanBruteForce) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Registry, TraversalCostTest, ::testing::ValuesIn(all_structures()),
-                         [](const auto& info) {
-                           std::string s = info.param;
-                           for (char& ch : s)
-                             if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
-                           return s;
-                         });
+                         [](const auto& info) { return structure_test_name(info.param); });
 
 // Brute force: one leaf and every primitive for every ray, hit or not; a ray that cannot be
 // traced (NaN direction) counts nothing.
