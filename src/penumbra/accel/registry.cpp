@@ -26,13 +26,22 @@ std::unique_ptr<Accelerator> create(const ParamList& p) {
 }
 
 /// `bvh`: the BVH of the chosen width (8 by default: measured fastest, docs/accel.md).
+/// nodes=full|compressed chooses the 8-wide node layout (docs/accel.md).
 std::unique_ptr<Accelerator> create_bvh(const ParamList& p) {
-  switch (p.get_int("width", 8, 2, 8)) {
+  const int width = int(p.get_int("width", 8, 2, 8));
+  const std::string nodes = p.get_string("nodes", "full");
+  if (nodes != "full" && nodes != "compressed")
+    throw Error(fmt::format("{}: parameter 'nodes' must be full or compressed, got '{}'", p.name(),
+                            nodes));
+  if (nodes == "compressed" && width != 8)
+    throw Error(fmt::format("{}: nodes=compressed needs width=8, got width={}", p.name(), width));
+  switch (width) {
     case 2:
       return std::make_unique<Bvh>(p);
     case 4:
       return std::make_unique<WideBvh<4>>(p);
     case 8:
+      if (nodes == "compressed") return std::make_unique<WideBvh<8, CompressedNode>>(p);
       return std::make_unique<WideBvh<8>>(p);
     default:
       throw Error("bvh: width must be 2, 4 or 8");
@@ -45,11 +54,14 @@ const Registry<Factory>& registry() {
       {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
       {"bvh",
        "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
-       "trav=2, build=binned|median|sweep",
+       "trav=2, build=binned|median|sweep, nodes=full|compressed (8-wide: float boxes, 256 bytes, "
+       "or byte planes, 128 bytes)",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
       {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},
       {"bvh:sweep", "bvh built by full-sweep SAH over all object partitions (build=sweep)",
+       create_bvh},
+      {"bvh:nodes=compressed", "bvh with 128-byte nodes, child boxes quantised to bytes",
        create_bvh},
       {"bvh2", "binary BVH (bvh:width=2), 32-byte nodes, nearer child first", create<Bvh>},
       {"bsp", "3D BSP by auto-partition (order=random|first|fewest-cuts, seed=1, depth=256)",

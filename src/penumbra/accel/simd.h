@@ -27,6 +27,16 @@ struct FloatW {
     for (int i = 0; i < W; ++i) r.v[i] = x;
     return r;
   }
+  /// W unsigned bytes from `p`, converted exactly.
+  static FloatW from_u8(const uint8_t* p) {
+    FloatW r;
+    for (int i = 0; i < W; ++i) r.v[i] = float(p[i]);
+    return r;
+  }
+  friend FloatW operator+(FloatW a, FloatW b) {
+    for (int i = 0; i < W; ++i) a.v[i] += b.v[i];
+    return a;
+  }
   friend FloatW operator-(FloatW a, FloatW b) {
     for (int i = 0; i < W; ++i) a.v[i] -= b.v[i];
     return a;
@@ -80,6 +90,16 @@ struct FloatW<8> {
   __m256 v;
   static FloatW load(const float* p) { return {_mm256_load_ps(p)}; }
   static FloatW broadcast(float x) { return {_mm256_set1_ps(x)}; }
+  static FloatW from_u8(const uint8_t* p) {
+#if defined(__AVX2__)
+    const __m128i bytes = _mm_loadl_epi64(reinterpret_cast<const __m128i*>(p));
+    return {_mm256_cvtepi32_ps(_mm256_cvtepu8_epi32(bytes))};
+#else
+    return {_mm256_setr_ps(float(p[0]), float(p[1]), float(p[2]), float(p[3]), float(p[4]),
+                           float(p[5]), float(p[6]), float(p[7]))};
+#endif
+  }
+  friend FloatW operator+(FloatW a, FloatW b) { return {_mm256_add_ps(a.v, b.v)}; }
   friend FloatW operator-(FloatW a, FloatW b) { return {_mm256_sub_ps(a.v, b.v)}; }
   friend FloatW operator*(FloatW a, FloatW b) { return {_mm256_mul_ps(a.v, b.v)}; }
   friend FloatW max(FloatW a, FloatW b) { return {_mm256_max_ps(a.v, b.v)}; }

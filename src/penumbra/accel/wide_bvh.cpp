@@ -105,6 +105,24 @@ class Collapser {
   size_t leaves_ = 0, max_depth_ = 0;
 };
 
+/// Row `row` of a node's child boxes, W lanes.
+template <int W>
+FloatW<W> plane(const WideNode<W>& n, int row) {
+  return FloatW<W>::load(n.box[row]);
+}
+FloatW<8> plane(const CompressedNode& n, int row) {
+  const int a = row >> 1;
+  return FloatW<8>::from_u8(n.q[row]) * FloatW<8>::broadcast(n.step(a)) +
+         FloatW<8>::broadcast(n.origin[a]);
+}
+
+/// Lanes that may hold a child (a full node's empty slots have empty boxes, never hit).
+template <int W>
+unsigned slots(const WideNode<W>&) {
+  return (1u << W) - 1;
+}
+unsigned slots(const CompressedNode& n) { return n.valid; }
+
 /// A deferred child: its (child, count) payload and entry distance.
 struct StackEntry {
   uint32_t child, count;
@@ -113,15 +131,15 @@ struct StackEntry {
 
 }  // namespace
 
-template <int W>
-WideBvh<W>::WideBvh(const ParamList& params) {
+template <int W, class Node>
+WideBvh<W, Node>::WideBvh(const ParamList& params) {
   params_ = read_bvh_build_params(params);
   params.check_all_used();
   name_ = params.to_string();
 }
 
-template <int W>
-void WideBvh<W>::build(const PrimitiveSet& prims) {
+template <int W, class Node>
+void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   const Timer timer;
   prims_ = &prims;
   // The binary tree is only walked once, to collapse it: no need to compact it first.
@@ -129,10 +147,10 @@ void WideBvh<W>::build(const PrimitiveSet& prims) {
   BvhBuildParams params = params_;
   if (prims.all_triangles()) params.block_shift = 2;
   BinaryBvh tree = build_binary_bvh(make_prim_refs(prims), params, false);
-  nodes_.clear();
-  Collapser<W> collapser(tree.nodes, nodes_);
+  WideNodeArray<W> full;
+  Collapser<W> collapser(tree.nodes, full);
   if (!tree.nodes.empty()) {
-    nodes_.reserve(tree.nodes[0].is_leaf() ? 1 : collapser.count(0));
+    full.reserve(tree.nodes[0].is_leaf() ? 1 : collapser.count(0));
     if (tree.nodes[0].is_leaf())
       collapser.emit_leaf_root(tree.nodes[0]);
     else
@@ -141,29 +159,42 @@ void WideBvh<W>::build(const PrimitiveSet& prims) {
   leaf_ = LeafPrims{};
   blocks_.resize(0);
   if (prims.all_triangles())
-    make_blocks(prims, tree.refs);
+    make_blocks(full, prims, tree.refs);
   else
     leaf_.build(prims, tree.refs);
+  if constexpr (std::is_same_v<Node, WideNode<W>>) {
+    nodes_ = std::move(full);
+  } else {
+    nodes_.clear();
+    nodes_.resize(full.size());
+    parallel_for_range(
+        full.size(),
+        [&](size_t begin, size_t end) {
+          for (size_t i = begin; i < end; ++i) nodes_[i] = compress_node(full[i]);
+        },
+        4096);
+  }
   stats_ = {};
   stats_.nodes = nodes_.size() + collapser.leaves();
   stats_.leaves = collapser.leaves();
   stats_.max_depth = collapser.max_depth();
   stats_.prim_refs = tree.refs.size();
-  stats_.bytes = nodes_.capacity() * sizeof(WideNode<W>) + leaf_.bytes() + blocks_.bytes();
+  stats_.bytes = nodes_.capacity() * sizeof(Node) + leaf_.bytes() + blocks_.bytes();
   stats_.build_ms = timer.elapsed_ms();
 }
 
-template <int W>
-void WideBvh<W>::make_blocks(const PrimitiveSet& prims, std::span<const PrimRef> refs) {
+template <int W, class Node>
+void WideBvh<W, Node>::make_blocks(std::span<WideNode<W>> nodes, const PrimitiveSet& prims,
+                                   std::span<const PrimRef> refs) {
   // Leaf children in node order (depth first), each given its first block: the blocks of
   // nearby leaves lie close in memory, as their references did.
   std::vector<uint32_t> leaf_lanes;  // node * W + lane
-  for (size_t n = 0; n < nodes_.size(); ++n)
+  for (size_t n = 0; n < nodes.size(); ++n)
     for (int i = 0; i < W; ++i)
-      if (nodes_[n].count[i] > 0) leaf_lanes.push_back(static_cast<uint32_t>(n * W + i));
+      if (nodes[n].count[i] > 0) leaf_lanes.push_back(static_cast<uint32_t>(n * W + i));
   std::vector<uint32_t> first(leaf_lanes.size() + 1, 0);
   for (size_t l = 0; l < leaf_lanes.size(); ++l) {
-    const uint32_t count = nodes_[leaf_lanes[l] / W].count[leaf_lanes[l] % W];
+    const uint32_t count = nodes[leaf_lanes[l] / W].count[leaf_lanes[l] % W];
     first[l + 1] = first[l] + TriangleBlocks::blocks_for(count);
   }
   blocks_.resize(first.back());
@@ -171,7 +202,7 @@ void WideBvh<W>::make_blocks(const PrimitiveSet& prims, std::span<const PrimRef>
       leaf_lanes.size(),
       [&](size_t begin, size_t end) {
         for (size_t l = begin; l < end; ++l) {
-          WideNode<W>& node = nodes_[leaf_lanes[l] / W];
+          WideNode<W>& node = nodes[leaf_lanes[l] / W];
           const int lane = leaf_lanes[l] % W;
           blocks_.fill(first[l], prims, refs.subspan(node.child[lane], node.count[lane]));
           node.child[lane] = first[l];
@@ -180,9 +211,9 @@ void WideBvh<W>::make_blocks(const PrimitiveSet& prims, std::span<const PrimRef>
       1024);
 }
 
-template <int W>
+template <int W, class Node>
 template <bool kAnyHit, bool kTriangles, class Cost>
-bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
+bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   using F = FloatW<W>;
   // Per-ray values: origin, 1/d (scaled up for exit distances, Pharr et al., "Physically Based
   // Rendering", 3rd ed., section 3.9.2) and the near-plane rows chosen by the direction signs.
@@ -218,7 +249,7 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
       // NaN (0 * inf: the origin on a plane of a zero direction component), so such a term
       // never rejects a box; the running bounds start from the ray interval and each plane's
       // distance enters as the first operand.
-      const WideNode<W>& n = nodes_[child];
+      const Node& n = nodes_[child];
       cost.node();
       // The children's indices lie on another cache line than the boxes; which one is needed
       // depends on the box test, so fetch the line now rather than after it (two misses in
@@ -226,12 +257,12 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
       __builtin_prefetch(n.child);
       const F t1 = F::broadcast(hit.t);
       const F near =
-          max((F::load(n.box[nx]) - ox) * ix,
-              max((F::load(n.box[ny]) - oy) * iy, max((F::load(n.box[nz]) - oz) * iz, t0)));
+          max((plane(n, nx) - ox) * ix,
+              max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
       const F far =
-          min((F::load(n.box[nx ^ 1]) - ox) * fx,
-              min((F::load(n.box[ny ^ 1]) - oy) * fy, min((F::load(n.box[nz ^ 1]) - oz) * fz, t1)));
-      unsigned mask = mask_le(near, far);
+          min((plane(n, nx ^ 1) - ox) * fx,
+              min((plane(n, ny ^ 1) - oy) * fy, min((plane(n, nz ^ 1) - oz) * fz, t1)));
+      unsigned mask = mask_le(near, far) & slots(n);
       if (mask == 0) goto pop;
       if constexpr (kAnyHit) {
         // Any hit ends the query, so order does not matter: go to the first child hit, defer
@@ -308,8 +339,8 @@ bool WideBvh<W>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   }
 }
 
-template <int W>
-bool WideBvh<W>::intersect(const Ray& ray, Hit& hit) const {
+template <int W, class Node>
+bool WideBvh<W, Node>::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
   if (!traceable(ray)) return false;
@@ -318,8 +349,8 @@ bool WideBvh<W>::intersect(const Ray& ray, Hit& hit) const {
   return blocks_.size() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
 }
 
-template <int W>
-bool WideBvh<W>::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
+template <int W, class Node>
+bool WideBvh<W, Node>::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
   hit = Hit{};
   hit.t = ray.tmax;
   if (!traceable(ray) || nodes_.empty()) return false;
@@ -328,8 +359,8 @@ bool WideBvh<W>::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) c
   return blocks_.size() ? traverse<false, true>(pr, hit, c) : traverse<false, false>(pr, hit, c);
 }
 
-template <int W>
-bool WideBvh<W>::occluded(const Ray& ray) const {
+template <int W, class Node>
+bool WideBvh<W, Node>::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
@@ -340,5 +371,6 @@ bool WideBvh<W>::occluded(const Ray& ray) const {
 
 template class WideBvh<4>;
 template class WideBvh<8>;
+template class WideBvh<8, CompressedNode>;
 
 }  // namespace penumbra

@@ -6,7 +6,8 @@
 /// slab test covers all of them (SSE for 4, AVX for 8); a ray reaches a leaf in half (a third) of
 /// the binary tree's dependent node fetches. Children are visited nearest first.
 ///
-/// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2).
+/// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
+/// the 8-wide one also nodes=full|compressed (the node layout, below).
 #include <string>
 #include <vector>
 
@@ -15,22 +16,13 @@
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/leaf_prims.h"
 #include "penumbra/accel/triangle_blocks.h"
+#include "penumbra/accel/wide_node.h"
 #include "penumbra/core/params.h"
 
 namespace penumbra {
 
-/// A node of W children: boxes as six rows (lo.x, hi.x, lo.y, hi.y, lo.z, hi.z) of W floats,
-/// so the near plane of axis a is row 2a + (direction negative). Empty slots have empty boxes,
-/// which no ray hits.
-template <int W>
-struct alignas(64) WideNode {
-  float box[6][W];    ///< children's boxes, one row per plane
-  uint32_t child[W];  ///< inner child: node index; leaf child: first leaf slot
-  uint32_t count[W];  ///< leaf child: primitive count; 0 for an inner child or an empty slot
-};
-
-/// Wide BVH of width W (4 or 8).
-template <int W>
+/// Wide BVH of width W (4 or 8) with nodes of type Node (WideNode<W>, or CompressedNode for 8).
+template <int W, class Node = WideNode<W>>
 class WideBvh final : public Accelerator {
  public:
   /// Reads the binary build's parameters; throws Error on bad values.
@@ -43,19 +35,20 @@ class WideBvh final : public Accelerator {
   AccelStats stats() const override { return stats_; }
 
   /// The nodes, root first.
-  std::span<const WideNode<W>> nodes() const { return {nodes_.data(), nodes_.size()}; }
+  std::span<const Node> nodes() const { return {nodes_.data(), nodes_.size()}; }
 
  private:
   template <bool kAnyHit, bool kTriangles, class Cost = NoCost>
   bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
 
-  /// Moves the leaves' triangles into blocks and points the leaf children at them.
-  void make_blocks(const PrimitiveSet& prims, std::span<const PrimRef> refs);
+  /// Moves the leaves' triangles into blocks and points the leaf children of `nodes` at them.
+  void make_blocks(std::span<WideNode<W>> nodes, const PrimitiveSet& prims,
+                   std::span<const PrimRef> refs);
 
   std::string name_;
   BvhBuildParams params_;
   const PrimitiveSet* prims_ = nullptr;
-  std::vector<WideNode<W>, ArrayAllocator<WideNode<W>>> nodes_;
+  std::vector<Node, ArrayAllocator<Node>> nodes_;
   LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle
   TriangleBlocks blocks_;  ///< the leaves' triangles, when every primitive is one
   AccelStats stats_;
@@ -63,5 +56,6 @@ class WideBvh final : public Accelerator {
 
 extern template class WideBvh<4>;
 extern template class WideBvh<8>;
+extern template class WideBvh<8, CompressedNode>;
 
 }  // namespace penumbra
