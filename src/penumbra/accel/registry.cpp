@@ -31,8 +31,8 @@ std::unique_ptr<Accelerator> create_bvh(const ParamList& p) {
   const int width = int(p.get_int("width", 8, 2, 8));
   const std::string nodes = p.get_string("nodes", "full");
   if (nodes != "full" && nodes != "compressed")
-    throw Error(fmt::format("{}: parameter 'nodes' must be full or compressed, got '{}'", p.name(),
-                            nodes));
+    throw Error(
+        fmt::format("{}: parameter 'nodes' must be full or compressed, got '{}'", p.name(), nodes));
   if (nodes == "compressed" && width != 8)
     throw Error(fmt::format("{}: nodes=compressed needs width=8, got width={}", p.name(), width));
   switch (width) {
@@ -54,14 +54,16 @@ const Registry<Factory>& registry() {
       {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
       {"bvh",
        "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
-       "trav=2, build=binned|median|sweep, nodes=full|compressed (8-wide: float boxes, 256 bytes, "
-       "or byte planes, 128 bytes)",
+       "trav=2, build=binned|median|sweep, collapse=greedy|sah, nodes=full|compressed (8-wide: "
+       "float boxes, 256 bytes, or byte planes, 128 bytes)",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
       {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},
       {"bvh:sweep", "bvh built by full-sweep SAH over all object partitions (build=sweep)",
        create_bvh},
       {"bvh:nodes=compressed", "bvh with 128-byte nodes, child boxes quantised to bytes",
+       create_bvh},
+      {"bvh:collapse=sah", "bvh collapsed from the binary tree by the SAH-optimal collapse",
        create_bvh},
       {"bvh2", "binary BVH (bvh:width=2), 32-byte nodes, nearer child first", create<Bvh>},
       {"bsp", "3D BSP by auto-partition (order=random|first|fewest-cuts, seed=1, depth=256)",

@@ -1,9 +1,14 @@
 #include "penumbra/accel/wide_bvh.h"
 
 #include <bit>
+#include <optional>
 #include <utility>
 
+#include <fmt/format.h>
+
+#include "penumbra/accel/build/wide_collapse.h"
 #include "penumbra/accel/simd.h"
+#include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/geometry/float_error.h"
@@ -21,7 +26,9 @@ using WideNodeArray = std::vector<WideNode<W>, ArrayAllocator<WideNode<W>>>;
 template <int W>
 class Collapser {
  public:
-  Collapser(const BvhNodeArray& bin, WideNodeArray<W>& out) : bin_(bin), out_(out) {}
+  /// Collapses greedily, or as `plan` says when given.
+  Collapser(const BvhNodeArray& bin, WideNodeArray<W>& out, const SahCollapse* plan)
+      : bin_(bin), out_(out), plan_(plan) {}
 
   /// Number of wide nodes emit(b) will make (to allocate them exactly).
   size_t count(uint32_t b) const {
@@ -74,6 +81,7 @@ class Collapser {
   /// The children of wide node `b`: its two binary children, then repeatedly the two children of
   /// the inner one with the largest surface area in place of it, up to W.
   int gather(uint32_t b, uint32_t (&kids)[W]) const {
+    if (plan_) return plan_->children(b, kids);
     kids[0] = bin_[b].index, kids[1] = bin_[b].index + 1;
     int n = 2;
     while (n < W) {
@@ -102,8 +110,32 @@ class Collapser {
 
   const BvhNodeArray& bin_;
   WideNodeArray<W>& out_;
+  const SahCollapse* plan_;
   size_t leaves_ = 0, max_depth_ = 0;
 };
+
+/// SAH cost of a wide tree relative to its root's area: `node_cost` per node times its box's
+/// area, plus each leaf's area times its tests (2^block_shift primitives per test).
+template <int W>
+double wide_sah_cost(const WideNodeArray<W>& nodes, float node_cost, int block_shift) {
+  if (nodes.empty()) return 0.0;
+  double total = 0.0;
+  Bounds3 root;
+  for (size_t n = 0; n < nodes.size(); ++n) {
+    for (int i = 0; i < W; ++i) {
+      const WideNode<W>& w = nodes[n];
+      if (!(w.box[0][i] <= w.box[1][i])) continue;  // an empty slot
+      const Bounds3 b{{w.box[0][i], w.box[2][i], w.box[4][i]},
+                      {w.box[1][i], w.box[3][i], w.box[5][i]}};
+      if (n == 0) root.extend(b);
+      const double area = b.surface_area();
+      total += w.count[i] ? area * double(((w.count[i] - 1) >> block_shift) + 1)
+                          : area * double(node_cost);
+    }
+  }
+  const double root_area = root.surface_area();
+  return root_area > 0 ? total / root_area + node_cost : 0.0;
+}
 
 /// Row `row` of a node's child boxes, W lanes.
 template <int W>
@@ -121,7 +153,9 @@ template <int W>
 unsigned slots(const WideNode<W>&) {
   return (1u << W) - 1;
 }
-unsigned slots(const CompressedNode& n) { return n.valid; }
+unsigned slots(const CompressedNode& n) {
+  return n.valid;
+}
 
 /// A deferred child: its (child, count) payload and entry distance.
 struct StackEntry {
@@ -134,6 +168,11 @@ struct StackEntry {
 template <int W, class Node>
 WideBvh<W, Node>::WideBvh(const ParamList& params) {
   params_ = read_bvh_build_params(params);
+  const std::string collapse = params.get_string("collapse", "greedy");
+  if (collapse != "greedy" && collapse != "sah")
+    throw Error(fmt::format("{}: parameter 'collapse' must be greedy or sah, got '{}'",
+                            params.name(), collapse));
+  sah_collapse_ = collapse == "sah";
   params.check_all_used();
   name_ = params.to_string();
 }
@@ -148,7 +187,10 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   if (prims.all_triangles()) params.block_shift = 2;
   BinaryBvh tree = build_binary_bvh(make_prim_refs(prims), params, false);
   WideNodeArray<W> full;
-  Collapser<W> collapser(tree.nodes, full);
+  std::optional<SahCollapse> plan;
+  if (sah_collapse_ && !tree.nodes.empty() && !tree.nodes[0].is_leaf())
+    plan.emplace(tree.nodes, W, params.traversal_cost, params.block_shift);
+  Collapser<W> collapser(tree.nodes, full, plan ? &*plan : nullptr);
   if (!tree.nodes.empty()) {
     full.reserve(tree.nodes[0].is_leaf() ? 1 : collapser.count(0));
     if (tree.nodes[0].is_leaf())
@@ -156,6 +198,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
     else
       collapser.emit(0, 0);
   }
+  const double sah_cost = wide_sah_cost(full, params.traversal_cost, params.block_shift);
   leaf_ = LeafPrims{};
   blocks_.resize(0);
   if (prims.all_triangles())
@@ -180,6 +223,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   stats_.max_depth = collapser.max_depth();
   stats_.prim_refs = tree.refs.size();
   stats_.bytes = nodes_.capacity() * sizeof(Node) + leaf_.bytes() + blocks_.bytes();
+  stats_.extra = {{"sah_cost", sah_cost}};
   stats_.build_ms = timer.elapsed_ms();
 }
 
@@ -256,12 +300,10 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       // parallel instead of one after the other).
       __builtin_prefetch(n.child);
       const F t1 = F::broadcast(hit.t);
-      const F near =
-          max((plane(n, nx) - ox) * ix,
-              max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
-      const F far =
-          min((plane(n, nx ^ 1) - ox) * fx,
-              min((plane(n, ny ^ 1) - oy) * fy, min((plane(n, nz ^ 1) - oz) * fz, t1)));
+      const F near = max((plane(n, nx) - ox) * ix,
+                         max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
+      const F far = min((plane(n, nx ^ 1) - ox) * fx,
+                        min((plane(n, ny ^ 1) - oy) * fy, min((plane(n, nz ^ 1) - oz) * fz, t1)));
       unsigned mask = mask_le(near, far) & slots(n);
       if (mask == 0) goto pop;
       if constexpr (kAnyHit) {

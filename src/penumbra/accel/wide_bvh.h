@@ -7,7 +7,8 @@
 /// the binary tree's dependent node fetches. Children are visited nearest first.
 ///
 /// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
-/// the 8-wide one also nodes=full|compressed (the node layout, below).
+/// collapse=greedy|sah (largest-area opening, or the SAH-optimal collapse of
+/// build/wide_collapse.h); the 8-wide one also nodes=full|compressed (the node layout).
 #include <string>
 #include <vector>
 
@@ -47,6 +48,7 @@ class WideBvh final : public Accelerator {
 
   std::string name_;
   BvhBuildParams params_;
+  bool sah_collapse_ = false;  ///< collapse=sah: the SAH-optimal collapse, else greedy
   const PrimitiveSet* prims_ = nullptr;
   std::vector<Node, ArrayAllocator<Node>> nodes_;
   LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle

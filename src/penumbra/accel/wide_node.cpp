@@ -49,7 +49,8 @@ CompressedNode compress_node(const WideNode<8>& node) {
     // rounding leaves a child's upper plane out of reach.
     const double extent = double(hi[a]) - double(lo[a]);
     int e = kMinExponent;
-    if (extent > 0) e = std::clamp(int(std::ceil(std::log2(extent / 255.0))), kMinExponent, kMaxExponent);
+    if (extent > 0)
+      e = std::clamp(int(std::ceil(std::log2(extent / 255.0))), kMinExponent, kMaxExponent);
     for (;; ++e) {
       c.exponent[a] = static_cast<int8_t>(e);
       bool ok = true;

@@ -22,12 +22,12 @@ struct alignas(64) WideNode {
 /// decoded box always contains the child's exact box and no hit is lost; the tree is the same
 /// as with WideNode<8>. 128 bytes: the boxes fill the first cache line, the children the second.
 struct alignas(64) CompressedNode {
-  float origin[3];      ///< grid origin per axis: the lower corner of the node's box
-  int8_t exponent[3];   ///< grid step per axis is 2^exponent, in [-126, 127]
-  uint8_t valid;        ///< bit i set where slot i holds a child
-  uint8_t q[6][8];      ///< quantised planes, rows as WideNode's (lo.x, hi.x, lo.y, ...)
-  uint32_t child[8];    ///< as WideNode
-  uint32_t count[8];    ///< as WideNode
+  float origin[3];     ///< grid origin per axis: the lower corner of the node's box
+  int8_t exponent[3];  ///< grid step per axis is 2^exponent, in [-126, 127]
+  uint8_t valid;       ///< bit i set where slot i holds a child
+  uint8_t q[6][8];     ///< quantised planes, rows as WideNode's (lo.x, hi.x, lo.y, ...)
+  uint32_t child[8];   ///< as WideNode
+  uint32_t count[8];   ///< as WideNode
 
   /// Grid step of axis a.
   float step(int a) const {

@@ -399,6 +399,7 @@ void run_accel_bench(const AccelBenchArgs& args) {
     const AccelStats st = accel->stats();
     row.bytes = st.bytes, row.nodes = st.nodes, row.depth = st.max_depth;
     row.refs_per_prim = double(st.prim_refs) / triangles;
+    row.extra = st.extra;
     measure(
         row, rays, threads, args.repeat,
         [&](const Ray& r, Hit& h) { return accel->intersect(r, h); },

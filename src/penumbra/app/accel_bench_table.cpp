@@ -63,9 +63,12 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
             *t.bounce_vs_embree, *t.shadow_vs_embree);
   // The structures' own counts of the incoherent queries.
   for (const BenchRow& r : rows)
-    if (r.nodes_per_ray)
-      fmt::print("{:<22} per incoherent ray: {:.1f} nodes visited, {:.1f} primitive tests\n",
-                 r.accel, *r.nodes_per_ray, r.prims_per_ray.value_or(0));
+    if (r.nodes_per_ray) {
+      std::string figures;
+      for (const auto& [key, value] : r.extra) figures += fmt::format("; {} {:g}", key, value);
+      fmt::print("{:<22} per incoherent ray: {:.1f} nodes visited, {:.1f} primitive tests{}\n",
+                 r.accel, *r.nodes_per_ray, r.prims_per_ray.value_or(0), figures);
+    }
   fmt::print(
       "(build ms at {}; refs/prim: leaf references per triangle. Mrays/s, medians of {} run(s):\n"
       " primary = closest hits of the camera's rays, incoher. = closest hits of random rays,\n"
@@ -112,6 +115,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
     if (r.ties) o["embree_ties"] = *r.ties;
     if (r.nodes_per_ray) o["nodes_per_ray"] = *r.nodes_per_ray;
     if (r.prims_per_ray) o["prims_per_ray"] = *r.prims_per_ray;
+    for (const auto& [key, value] : r.extra) o[key] = value;
     out.push_back(o);
   }
   write_file_atomically(path, out.dump(2) + "\n");

@@ -34,6 +34,8 @@ struct BenchRow {
   /// Per incoherent closest-hit query, counted by the structure (intersect_cost, untimed): node
   /// records visited and primitive tests. Unknown for Embree.
   std::optional<double> nodes_per_ray, prims_per_ray;
+  /// The structure's own figures (AccelStats::extra, e.g. the BVHs' "sah_cost").
+  std::vector<std::pair<std::string, double>> extra;
 };
 
 /// Prints the table: build ms (at `build_threads`), MiB, nodes, depth, refs/prim, then primary,

@@ -1,0 +1,54 @@
+#pragma once
+/// The SAH-optimal collapse of a binary BVH into a wide one (Ylitie, Karras & Laine 2017,
+/// "Efficient Incoherent Ray Traversal on GPUs Through Compressed Wide BVHs", section 3.1): by
+/// dynamic programming over the binary tree, the wide tree of least SAH cost among those whose
+/// nodes gather binary subtrees, instead of greedily opening the child of largest area. Binary
+/// leaves stay leaves, so the leaves (and their triangle blocks) are the binary build's.
+#include <cstdint>
+#include <vector>
+
+#include "penumbra/accel/build/bvh_node.h"
+
+namespace penumbra {
+
+/// Cost model: a wide node costs `node_cost` times its area, a leaf its area times its tests
+/// (⌈count / 2^block_shift⌉ blocks); the total is divided by the root's area.
+class SahCollapse {
+ public:
+  static constexpr int kMaxWidth = 8;
+
+  /// Plans the collapse of `bin` (root at 0, an inner node) into nodes of at most `width` (2..8)
+  /// children.
+  SahCollapse(const BvhNodeArray& bin, int width, float node_cost, int block_shift);
+
+  /// The children of the wide node made for binary inner node `b`; returns their number.
+  int children(uint32_t b, uint32_t* kids) const;
+
+  /// SAH cost of the planned wide tree, relative to the root's area.
+  double cost() const;
+
+ private:
+  /// Fills the table for the subtree of binary node `b`.
+  void plan(uint32_t b);
+  /// The least cost of inner node `b`'s two children sharing `j` slots; `best_k` gets the left
+  /// child's share.
+  float distribute(uint32_t b, int j, int& best_k) const;
+  /// Appends the slots of `b`'s subtree as at most `i` slots to kids[n...].
+  void expand(uint32_t b, int i, uint32_t* kids, int& n) const;
+  /// Row of binary node `b` (reachable nodes only are numbered).
+  size_t row(uint32_t b) const { return size_t(dense_[b]) * width_; }
+
+  const BvhNodeArray& bin_;
+  int width_, block_shift_;
+  float node_cost_;
+  std::vector<uint32_t> dense_;  ///< binary node -> row
+  /// cost_[row + i - 1]: the least cost of the subtree as at most i slots of a wide node (i in
+  /// 1..width). choice_ says how: low nibble `split` = 0 for one slot (the node itself: a leaf,
+  /// or an inner node that becomes a wide node), else the left child takes `split` of `used`
+  /// (high nibble) slots and the right one the rest.
+  std::vector<float> cost_;
+  std::vector<uint8_t> choice_;
+  float root_cost_ = 0;
+};
+
+}  // namespace penumbra

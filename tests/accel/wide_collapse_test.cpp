@@ -1,0 +1,129 @@
+/// Tests of the SAH-optimal collapse (bvh:collapse=sah): the planned cost is the cost of the tree
+/// it makes, never above the greedy collapse's, and the least over every collapse of a small
+/// tree (found by enumeration); the tree keeps every leaf, and the parameter is checked.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <functional>
+#include <limits>
+#include <vector>
+
+#include "penumbra/accel/build/bvh_builder.h"
+#include "penumbra/accel/build/wide_collapse.h"
+#include "penumbra/accel/registry.h"
+#include "penumbra/core/error.h"
+#include "test_scenes.h"
+
+namespace penumbra::test {
+namespace {
+
+double stat(const Accelerator& a, const std::string& key) {
+  for (const auto& [k, v] : a.stats().extra)
+    if (k == key) return v;
+  ADD_FAILURE() << a.name() << " reports no " << key;
+  return 0.0;
+}
+
+BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf) {
+  BvhBuildParams p;
+  p.max_leaf = max_leaf;
+  p.block_shift = 2;
+  return build_binary_bvh(make_prim_refs(prims), p);
+}
+
+/// The least SAH cost (unnormalised) of binary node b's subtree as at most `slots` slots of a
+/// wide node, by enumerating every way to cut the binary tree (exponential: small trees only).
+/// Independent of SahCollapse's table: it recurses on sets of slots, not on counts.
+double best_cost(const BvhNodeArray& bin, uint32_t b, int slots, int width, float node_cost) {
+  const BvhNode& n = bin[b];
+  const double area = n.bounds().surface_area();
+  if (n.is_leaf()) return area * double((n.count + 3) / 4);
+  // As one slot, b is a wide node whose children are a cut of its subtree into <= width slots.
+  std::function<double(uint32_t, int)> cut = [&](uint32_t c, int k) -> double {
+    // Cheapest cut of c's subtree into at most k slots (each slot a leaf or a wide node).
+    double best = best_cost(bin, c, 1, width, node_cost);  // c itself as a slot
+    if (!bin[c].is_leaf() && k >= 2)
+      for (int left = 1; left < k; ++left)
+        best = std::min(best, cut(bin[c].index, left) + cut(bin[c].index + 1, k - left));
+    return best;
+  };
+  if (slots == 1) {
+    double best = std::numeric_limits<double>::infinity();
+    for (int left = 1; left < width; ++left)
+      best = std::min(best, cut(n.index, left) + cut(n.index + 1, width - left));
+    return node_cost * area + best;
+  }
+  return cut(b, slots);
+}
+
+TEST(SahCollapse, PlannedCostIsTheBuiltTreesAndAtMostTheGreedyOne) {
+  for (const auto& scene : {random_soup(3000, 3), torus(40, 30), room_with_boxes(30, 4)}) {
+    for (const char* width : {"8", "4"}) {
+      const std::string base = std::string("bvh:width=") + width;
+      auto greedy = make_accelerator(base);
+      auto sah = make_accelerator(base + ",collapse=sah");
+      greedy->build(scene.prims);
+      sah->build(scene.prims);
+      const double g = stat(*greedy, "sah_cost"), s = stat(*sah, "sah_cost");
+      EXPECT_LE(s, g * (1 + 1e-5)) << scene.name << " width " << width;
+      EXPECT_GT(s, 1.0) << scene.name;
+      EXPECT_EQ(sah->stats().leaves, greedy->stats().leaves) << scene.name;
+      EXPECT_EQ(sah->stats().prim_refs, greedy->stats().prim_refs) << scene.name;
+
+      // The plan's own figure for the same binary tree (the one the structure built).
+      const BinaryBvh tree = binary_tree(scene.prims, 8);
+      const SahCollapse plan(tree.nodes, std::stoi(width), 2.0f, 2);
+      EXPECT_NEAR(plan.cost(), s, 1e-4 * s) << scene.name << " width " << width;
+    }
+  }
+}
+
+TEST(SahCollapse, FindsTheCheapestCollapseOfSmallTrees) {
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    const PrimitiveSet prims = random_soup(24 + 4 * int(seed), seed).prims;
+    const BinaryBvh tree = binary_tree(prims, 2);
+    ASSERT_FALSE(tree.nodes[0].is_leaf());
+    for (int width : {2, 3, 4}) {
+      const SahCollapse plan(tree.nodes, width, 2.0f, 2);
+      const double exact =
+          best_cost(tree.nodes, 0, 1, width, 2.0f) / tree.nodes[0].bounds().surface_area();
+      EXPECT_NEAR(plan.cost(), exact, 1e-4 * exact) << "seed " << seed << " width " << width;
+    }
+  }
+}
+
+TEST(SahCollapse, ChildrenPartitionTheSubtreeIntoAtMostWidthSlots) {
+  const BinaryBvh tree = binary_tree(random_soup(5000, 9).prims, 8);
+  const SahCollapse plan(tree.nodes, 8, 2.0f, 2);
+  // Walk the wide tree the plan makes and count the leaves' references: each exactly once.
+  std::vector<int> seen(tree.refs.size(), 0);
+  std::vector<uint32_t> todo = {0};
+  while (!todo.empty()) {
+    const uint32_t b = todo.back();
+    todo.pop_back();
+    uint32_t kids[8];
+    const int n = plan.children(b, kids);
+    ASSERT_GE(n, 2);
+    ASSERT_LE(n, 8);
+    for (int i = 0; i < n; ++i) {
+      const BvhNode& k = tree.nodes[kids[i]];
+      if (k.is_leaf())
+        for (uint32_t r = k.index; r < k.index + k.count; ++r) ++seen[r];
+      else
+        todo.push_back(kids[i]);
+    }
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), long(seen.size()));
+}
+
+TEST(SahCollapse, ParameterIsChecked) {
+  EXPECT_NO_THROW(make_accelerator("bvh:collapse=greedy"));
+  EXPECT_NO_THROW(make_accelerator("bvh:collapse=sah,nodes=compressed"));
+  EXPECT_NO_THROW(make_accelerator("bvh4:collapse=sah"));
+  EXPECT_THROW(make_accelerator("bvh:collapse=optimal"), Error);
+  EXPECT_THROW(make_accelerator("bvh:width=2,collapse=sah"), Error);  // binary: nothing to collapse
+  EXPECT_THROW(SahCollapse(BvhNodeArray{}, 9, 2.0f, 2), Error);
+}
+
+}  // namespace
+}  // namespace penumbra::test
