@@ -18,6 +18,7 @@
 #include "penumbra/core/rng.h"
 #include "penumbra/geometry/polygon_triangulator.h"
 #include "penumbra/scene/mesh_reader.h"
+#include "penumbra/scene/mesh_warnings.h"
 #include "penumbra/scene/obj_reader.h"
 #include "penumbra/scene/scene_loader.h"
 
@@ -436,6 +437,41 @@ TEST(ObjTriangulation, ConcavePolygonsAboveTheLimitGetTheFanWithAWarning) {
             "t.obj:line 1000001: face of 1000000 vertices is concave and has more than 10000 "
             "vertices, the most that are ear-clipped; fan-triangulated, so its triangles may "
             "cover area outside it");
+}
+
+TEST(ObjTriangulation, ConcavePolygonsBeyondTheFilesBudgetGetTheFanWithAWarning) {
+  const Polygon poly = comb(250);  // 1000 vertices: 10^6 units of ear-clipping work
+  std::vector<Vec3> points;
+  for (const Vec2d& q : poly) points.push_back(Vec3(float(q.x), float(q.y), 0.0f));
+  const std::vector<Vec3> square = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  PolygonTriangulator triangulator(2.5e6);  // room for two
+  std::vector<uint32_t> out;
+  for (int i = 0; i < 3; ++i) {
+    out.clear();
+    const PolygonReport r = triangulator.triangulate(points, out);
+    EXPECT_EQ(r.budget_spent, i == 2) << "polygon " << i;
+    EXPECT_EQ(r.any(), i == 2) << "polygon " << i;
+    EXPECT_EQ(out.size(), 3 * 998u);
+    if (i < 2)
+      EXPECT_NE(out, fan(1000)) << "polygon " << i;
+    else
+      EXPECT_EQ(out, fan(1000));
+    // Convex polygons take the fan in O(n) and do not draw on the budget.
+    out.clear();
+    EXPECT_FALSE(triangulator.triangulate(square, out).any());
+  }
+  PolygonReport spent;
+  spent.budget_spent = true;
+  const std::vector<std::string> problems = polygon_problems(spent, 1000);
+  ASSERT_EQ(problems.size(), 1u);
+  EXPECT_EQ(problems[0],
+            "face of 1000 vertices is concave, and this file's concave faces have used up the "
+            "ear-clipping budget (the work of 20 faces of 10000 vertices); fan-triangulated, so "
+            "its triangles may cover area outside it");
+  // A new triangulator (a new file) has its budget again.
+  PolygonTriangulator fresh(2.5e6);
+  out.clear();
+  EXPECT_FALSE(fresh.triangulate(points, out).budget_spent);
 }
 
 TEST(ObjTriangulation, WarningsAreLimitedPerFile) {

@@ -105,6 +105,13 @@ PolygonReport PolygonTriangulator::triangulate(std::span<const Vec3> points,
     append_fan(n, triangles);
     return report;
   }
+  const double work = double(n) * double(n);
+  if (work > budget_left_) {
+    report.budget_spent = true;
+    append_fan(n, triangles);
+    return report;
+  }
+  budget_left_ -= work;
   find_crossing(report);
   ear_clip(triangles, report);
   return report;

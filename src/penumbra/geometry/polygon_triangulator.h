@@ -21,7 +21,10 @@
 /// - Every polygon of n vertices gives n - 2 triangles, each with the polygon's winding: a
 ///   triangle's normal points along the Newell normal, as the fan's does.
 /// - Cost: O(n) for convex polygons; O(n^2) for the others, so those of more than
-///   kMaxEarClipVertices vertices get the fan instead (reported).
+///   kMaxEarClipVertices vertices get the fan instead (reported), and one triangulator (one
+///   file) ear-clips concave polygons only until their n^2 add up to its budget (by default
+///   kEarClipBudget); later ones get the fan (reported), so no file costs more than a few
+///   seconds of ear clipping.
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -40,6 +43,11 @@ inline constexpr double kPlanarTolerance = 1e-3;
 /// core); larger ones are fan-triangulated. Convex polygons of any size get the fan in O(n).
 inline constexpr size_t kMaxEarClipVertices = 10000;
 
+/// The ear-clipping work one PolygonTriangulator spends by default, as the sum of n^2 over the
+/// concave polygons it ear-clips: 20 polygons of kMaxEarClipVertices (2 to 4 s on one core), or
+/// 1.2 * 10^8 concave quadrilaterals.
+inline constexpr double kEarClipBudget = 2e9;
+
 /// What PolygonTriangulator::triangulate found; nothing set for a planar simple polygon.
 struct PolygonReport {
   /// Largest distance of a vertex from the polygon's Newell plane (through its centroid),
@@ -49,6 +57,8 @@ struct PolygonReport {
   bool no_area = false;
   /// Concave with more than kMaxEarClipVertices vertices: fan-triangulated instead.
   bool too_many_vertices = false;
+  /// Concave, and the triangulator's ear-clipping budget was spent: fan-triangulated instead.
+  bool budget_spent = false;
   /// Two edges cross (in the projection); `crossing_edges` are their first corners (0-based).
   bool crossing = false;
   size_t crossing_edges[2] = {0, 0};
@@ -59,13 +69,19 @@ struct PolygonReport {
   bool non_planar() const { return off_plane > kPlanarTolerance; }
   /// True when any problem was found.
   bool any() const {
-    return non_planar() || no_area || too_many_vertices || crossing || stuck_vertices > 0;
+    return non_planar() || no_area || too_many_vertices || budget_spent || crossing ||
+           stuck_vertices > 0;
   }
 };
 
 /// Triangulates polygons one at a time, reusing its buffers between calls.
 class PolygonTriangulator {
  public:
+  /// A triangulator that ear-clips concave polygons while the sum of their n^2 stays within
+  /// `ear_clip_budget`.
+  explicit PolygonTriangulator(double ear_clip_budget = kEarClipBudget)
+      : budget_left_(ear_clip_budget) {}
+
   /// Appends the n - 2 triangles of the polygon `points` (3 <= n < 2^32, finite) to `triangles`
   /// as indices into `points`, three per triangle; returns what it found.
   PolygonReport triangulate(std::span<const Vec3> points, std::vector<uint32_t>& triangles);
@@ -91,6 +107,7 @@ class PolygonTriangulator {
   std::vector<uint32_t> straight_;  // candidates among straight vertices (checked when taken)
   std::vector<uint32_t> order_;     // edges by their smallest x, for the crossing test
   size_t cuts_since_cleanup_ = 0;
+  double budget_left_;  // ear-clipping work left, in n^2 units
 };
 
 }  // namespace penumbra

@@ -19,7 +19,7 @@ void MeshWarnings::add(const std::string& place, const std::string& problem) {
 void MeshWarnings::polygon(const std::string& place, const PolygonReport& r, size_t n) {
   if (!listing()) {  // counted only: no message is built
     count_ += size_t{r.no_area} + r.non_planar() + r.crossing + (r.stuck_vertices > 0) +
-              r.too_many_vertices;
+              r.too_many_vertices + r.budget_spent;
     return;
   }
   for (const std::string& p : polygon_problems(r, n)) add(place, p);
@@ -60,6 +60,13 @@ std::vector<std::string> polygon_problems(const PolygonReport& r, size_t n) {
         fmt::format("{}is concave and has more than {} vertices, the most that are ear-clipped; "
                     "fan-triangulated, so its triangles may cover area outside it",
                     face, kMaxEarClipVertices));
+  if (r.budget_spent)
+    out.push_back(fmt::format(
+        "{}is concave, and this file's concave faces have used up the ear-clipping budget (the "
+        "work of {} faces of {} vertices); fan-triangulated, so its triangles may cover area "
+        "outside it",
+        face, int(kEarClipBudget / (double(kMaxEarClipVertices) * kMaxEarClipVertices)),
+        kMaxEarClipVertices));
   return out;
 }
 
