@@ -15,6 +15,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -98,6 +99,43 @@ TEST_F(CliTest, BadInputFailsWithAMessageAndNoOutput) {
   }
 }
 
+// Numeric options are read as the user wrote them, in decimal and in range: CLI11 alone took
+// --seed -1 as 2^64 - 1, 2^64 as the largest seed, --spp 010 as 8 (octal), and NaN as a positive
+// --time-limit (a render that never stopped) or --target-error (never reached).
+TEST_F(CliTest, NumericOptionsAreDecimalFiniteAndInRange) {
+  const std::string out = path("never.png");
+  const std::string render = "render " + scene("cornell-box.json") + " --resolution 8x8 -o " + out;
+  const std::pair<std::string, std::string> refused[] = {
+      {render + " --seed -1",
+       "--seed: expected a decimal integer in [0, 18446744073709551615], "
+       "got '-1'"},
+      {render + " --seed 18446744073709551616", "got '18446744073709551616'"},
+      {render + " --spp 0x10", "--spp: expected a decimal integer in [1, 16777216], got '0x10'"},
+      {render + " --spp 99999999999999999999", "--spp: expected a decimal integer"},
+      {render + " --threads -2", "--threads: expected a decimal integer in [1, 4096]"},
+      {render + " --max-depth 1.5", "--max-depth: expected a decimal integer"},
+      {render + " --time-limit nan",
+       "--time-limit: expected a finite number greater than 0, "
+       "got 'nan'"},
+      {render + " --time-limit inf", "--time-limit: expected a finite number greater than 0"},
+      {render + " --checkpoint 0", "--checkpoint: expected a finite number greater than 0"},
+      {render + " --target-error nan", "--target-error: expected a finite number greater"},
+      {"accel-bench " + scene("meshes/bunny.obj") + " --rays -1", "--rays: expected"},
+      {"collide " + scene("meshes/bunny.obj") + " --max-print -1", "--max-print: expected"},
+      {"bsp2d --random 10 --seed -1", "--seed: expected a decimal integer"},
+  };
+  for (const auto& [args, expect] : refused) {
+    EXPECT_NE(run(args), 0) << args;
+    EXPECT_NE(err_.find(expect), std::string::npos) << args << "\n" << err_;
+    EXPECT_FALSE(fs::exists(out)) << args;
+  }
+  // A leading zero is decimal: --spp 010 renders 10 samples, not 8.
+  ASSERT_EQ(run(render + " --spp 010 --integrator raycast"), 0) << err_;
+  EXPECT_NE(err_.find("(10 spp of 10, complete)"), std::string::npos) << err_;
+  // The largest seed is accepted.
+  ASSERT_EQ(run(render + " --spp 1 --seed 18446744073709551615 --integrator raycast"), 0) << err_;
+}
+
 // accel-bench on a scene and on a mesh writes one JSON row per structure (Embree's too when it
 // was found at configure time) with the documented keys, and one run per thread count.
 TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
@@ -123,8 +161,8 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
       ASSERT_EQ(row["runs"].size(), 1u) << row.dump();
       const auto& run = row["runs"][0];
       EXPECT_EQ(run["threads"], 1);
-      for (const char* key : {"primary_mrays", "incoherent_mrays", "occlusion_mrays",
-                              "bounce_mrays", "shadow_mrays"})
+      for (const char* key :
+           {"primary_mrays", "incoherent_mrays", "occlusion_mrays", "bounce_mrays", "shadow_mrays"})
         EXPECT_GT(run[key].get<double>(), 0.0) << key;
     }
     EXPECT_EQ(structures, 2u);

@@ -18,6 +18,7 @@
 #include "penumbra/accel/registry.h"
 #include "penumbra/app/accel_bench_table.h"
 #include "penumbra/app/bench_rays.h"
+#include "penumbra/app/cli_checks.h"
 #include "penumbra/app/embree_scene.h"
 #include "penumbra/app/mesh_check.h"
 #include "penumbra/core/error.h"
@@ -240,11 +241,11 @@ void add_accel_bench_command(CLI::App& app) {
                   "'1,all': one column group each); structures build with the largest");
   cmd->add_option("--json", args->json, "Also write the results to this JSON file");
   cmd->add_option("--rays", args->rays, "Incoherent (and occlusion) rays (default 1000000)")
-      ->check(CLI::Range(size_t(1), size_t(1) << 30));
+      ->transform(integer_in(1, int64_t{1} << 30));
   cmd->add_option("--repeat", args->repeat,
                   "Runs per measurement (default 3): rates are medians; each run of a structure "
                   "alternates with Embree's every 131072 rays, and 'x embree' is the median ratio")
-      ->check(CLI::Range(1, 100));
+      ->transform(integer_in(1, 100));
   cmd->callback([args] { run_accel_bench(*args); });
 }
 

@@ -12,6 +12,7 @@
 #include "penumbra/accel2d/random_segments.h"
 #include "penumbra/accel2d/registry2d.h"
 #include "penumbra/app/bsp2d_experiment.h"
+#include "penumbra/app/cli_checks.h"
 #include "penumbra/app/svg2d.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/params.h"
@@ -75,21 +76,22 @@ void add_bsp2d_command(CLI::App& app) {
       "its traversal path, SVG pictures, and the fragment experiment (see docs/lab2d.md)");
   cmd->add_option("INPUT", args->input, "Segment file (text format of docs/lab2d.md)");
   cmd->add_option("--random", args->random, "Generate N random disjoint segments instead")
-      ->check(CLI::Range(size_t(1), size_t(10'000'000)));
+      ->transform(integer_in(1, 10'000'000));
   std::string names;
   for (const auto& info : lab2d::accel2d_list())
     names += fmt::format("\n  {}: {}", info.name, info.description);
   cmd->add_option("--structure", args->structure, "NAME[:k=v,...] (default bsp):" + names);
   cmd->add_option("--order", args->order, "BSP order: random (default), first, fewest-cuts");
-  cmd->add_option("--seed", args->seed, "Seed of the random order and of --random (default 1)");
+  cmd->add_option("--seed", args->seed, "Seed of the random order and of --random (default 1)")
+      ->transform(unsigned_in(0, UINT64_MAX));
   cmd->add_option("--ray", args->ray, "The ray X,Y,DX,DY (default: the file's, or one across)");
   cmd->add_option("--svg", args->svg, "Draw the segments, the partition and the ray here");
   cmd->add_option("--experiment", args->experiment,
                   "'fragments': fragments and build time of 2DRANDOMBSP for n = 100 .. --max-n");
   cmd->add_option("--max-n", args->max_n, "Experiment: the largest n (default 100000)")
-      ->check(CLI::Range(size_t(100), size_t(10'000'000)));
+      ->transform(integer_in(100, 10'000'000));
   cmd->add_option("--seeds", args->seeds, "Experiment: seeds per n (default 3)")
-      ->check(CLI::Range(size_t(1), size_t(1000)));
+      ->transform(integer_in(1, 1000));
   cmd->callback([args] { run_bsp2d(*args); });
 }
 

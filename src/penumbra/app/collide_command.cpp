@@ -14,6 +14,7 @@
 
 #include "penumbra/accel/collision/collision.h"
 #include "penumbra/accel/collision/collision_brute.h"
+#include "penumbra/app/cli_checks.h"
 #include "penumbra/app/mesh_check.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
@@ -161,10 +162,11 @@ void add_collide_command(CLI::App& app) {
                   "Motion: the sphere's final centre x,y,z, or the box's displacement dx,dy,dz "
                   "(default: no motion)");
   cmd->add_flag("--brute", args->brute, "Also run brute force, time it and compare the answers");
-  cmd->add_option("--max-print", args->max_print, "Pairs or triangles to list (default 10)");
+  cmd->add_option("--max-print", args->max_print, "Pairs or triangles to list (default 10)")
+      ->transform(integer_in(0, INT64_MAX));
   cmd->add_option("--json", args->json, "Also write the results (all pairs) to this JSON file");
   cmd->add_option("--threads", args->threads, "Worker threads for the builds (default: all)")
-      ->check(CLI::Range(1, 4096));
+      ->transform(integer_in(1, 4096));
   cmd->callback([args] { run_collide(*args); });
 }
 

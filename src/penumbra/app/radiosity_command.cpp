@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 #include <CLI/CLI.hpp>
 
+#include "penumbra/app/cli_checks.h"
 #include "penumbra/app/progress.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
@@ -98,7 +99,7 @@ void add_radiosity_command(CLI::App& app) {
                   "radiosity[:params] (patch, form_factors, rays, resolution, solver, tolerance, "
                   "hierarchy, epsilon, clusters; see docs/radiosity.md)");
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
+      ->transform(integer_in(1, 4096));
   cmd->add_flag("-q,--quiet", args->quiet, "No report");
   cmd->callback([args] {
     const int code = run_radiosity(*args);

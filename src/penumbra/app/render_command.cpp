@@ -10,6 +10,7 @@
 #include <CLI/CLI.hpp>
 
 #include "penumbra/accel/registry.h"
+#include "penumbra/app/cli_checks.h"
 #include "penumbra/app/progress.h"
 #include "penumbra/app/stats_format.h"
 #include "penumbra/core/error.h"
@@ -123,10 +124,11 @@ void add_render_command(CLI::App& app) {
   cmd->add_option("--spp", args->spp,
                   "Samples per pixel (overrides the scene; the most a time- "
                   "or error-limited render takes)")
-      ->check(CLI::Range(1, 1 << 24));
+      ->transform(integer_in(1, 1 << 24));
   cmd->add_option("--threads", args->threads, "Worker threads (default: all cores)")
-      ->check(CLI::Range(1, 4096));
-  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene)");
+      ->transform(integer_in(1, 4096));
+  cmd->add_option("--seed", args->seed, "Random seed (overrides the scene)")
+      ->transform(unsigned_in(0, UINT64_MAX));
   cmd->add_option("--accel", args->accel, "Acceleration structure NAME[:params] (see accel-bench)");
   cmd->add_option("--integrator", args->integrator,
                   "Integrator NAME[:params]: raycast, whitted, distribution, path, photon, "
@@ -137,16 +139,16 @@ void add_render_command(CLI::App& app) {
                   "Pixel filter NAME[:params]: box, tent, gaussian, mitchell");
   cmd->add_option("--resolution", args->resolution, "Image size WxH (overrides the scene)");
   cmd->add_option("--max-depth", args->max_depth, "Maximum bounces (overrides the scene)")
-      ->check(CLI::Range(0, 1000000));
+      ->transform(integer_in(0, 1000000));
   cmd->add_option("--time-limit", args->time_limit,
                   "Stop after about this many seconds of rendering, keeping whole passes")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite());
   cmd->add_option("--checkpoint", args->checkpoint,
                   "Write the image so far every this many seconds (atomically)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite());
   cmd->add_option("--target-error", args->target_error,
                   "Stop when the image's mean relative standard error falls below this")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_finite());
   cmd->add_option("--variance", args->variance,
                   "Also write the per-pixel variance of the mean to this image (.exr or .pfm)");
   cmd->add_option("--max-memory", args->max_memory,
