@@ -55,7 +55,8 @@ const Registry<Factory>& registry() {
       {"bvh",
        "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
        "trav=2, build=binned|median|sweep, collapse=greedy|sah, nodes=full|compressed (8-wide: "
-       "float boxes, 256 bytes, or byte planes, 128 bytes)",
+       "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
+       "as extra references for large triangles, F in [0, 4])",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
       {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},
@@ -64,6 +65,9 @@ const Registry<Factory>& registry() {
       {"bvh:nodes=compressed", "bvh with 128-byte nodes, child boxes quantised to bytes",
        create_bvh},
       {"bvh:collapse=sah", "bvh collapsed from the binary tree by the SAH-optimal collapse",
+       create_bvh},
+      {"bvh:presplit=0.5",
+       "bvh over pre-split large triangles: up to 50 % more references, split at grid planes",
        create_bvh},
       {"bvh2", "binary BVH (bvh:width=2), 32-byte nodes, nearer child first", create<Bvh>},
       {"bsp", "3D BSP by auto-partition (order=random|first|fewest-cuts, seed=1, depth=256)",

@@ -1,11 +1,13 @@
 #include "penumbra/accel/wide_bvh.h"
 
+#include <algorithm>
 #include <bit>
 #include <optional>
 #include <utility>
 
 #include <fmt/format.h>
 
+#include "penumbra/accel/build/presplit.h"
 #include "penumbra/accel/build/wide_collapse.h"
 #include "penumbra/accel/simd.h"
 #include "penumbra/core/error.h"
@@ -16,6 +18,28 @@
 namespace penumbra {
 
 namespace {
+
+/// The pieces of a pre-split triangle may share a leaf: keep one reference of each triangle
+/// (sorted by id) so that it is tested once.
+template <int W>
+void dedupe_leaves(std::span<WideNode<W>> nodes, std::span<PrimRef> refs) {
+  const auto by_id = [](const PrimRef& a, const PrimRef& b) { return a.id < b.id; };
+  const auto same = [](const PrimRef& a, const PrimRef& b) { return a.id == b.id; };
+  parallel_for_range(
+      nodes.size(),
+      [&](size_t begin, size_t end) {
+        for (size_t n = begin; n < end; ++n)
+          for (int i = 0; i < W; ++i) {
+            const uint32_t count = nodes[n].count[i];
+            if (count < 2) continue;
+            PrimRef* first = refs.data() + nodes[n].child[i];
+            std::sort(first, first + count, by_id);
+            nodes[n].count[i] =
+                static_cast<uint32_t>(std::unique(first, first + count, same) - first);
+          }
+      },
+      1024);
+}
 
 template <int W>
 using WideNodeArray = std::vector<WideNode<W>, ArrayAllocator<WideNode<W>>>;
@@ -173,6 +197,7 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
     throw Error(fmt::format("{}: parameter 'collapse' must be greedy or sah, got '{}'",
                             params.name(), collapse));
   sah_collapse_ = collapse == "sah";
+  presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
   params.check_all_used();
   name_ = params.to_string();
 }
@@ -185,7 +210,10 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   // Triangle leaves are tested four at a time (TriangleBlocks): let the SAH count blocks.
   BvhBuildParams params = params_;
   if (prims.all_triangles()) params.block_shift = 2;
-  BinaryBvh tree = build_binary_bvh(make_prim_refs(prims), params, false);
+  PrimRefs refs = make_prim_refs(prims);
+  const bool presplit = presplit_ > 0 && prims.all_triangles();
+  if (presplit) presplit_refs(prims, refs, presplit_);
+  BinaryBvh tree = build_binary_bvh(std::move(refs), params, false);
   WideNodeArray<W> full;
   std::optional<SahCollapse> plan;
   if (sah_collapse_ && !tree.nodes.empty() && !tree.nodes[0].is_leaf())
@@ -198,6 +226,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
     else
       collapser.emit(0, 0);
   }
+  if (presplit) dedupe_leaves<W>(full, tree.refs);
   const double sah_cost = wide_sah_cost(full, params.traversal_cost, params.block_shift);
   leaf_ = LeafPrims{};
   blocks_.resize(0);

@@ -49,6 +49,7 @@ class WideBvh final : public Accelerator {
   std::string name_;
   BvhBuildParams params_;
   bool sah_collapse_ = false;  ///< collapse=sah: the SAH-optimal collapse, else greedy
+  double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
   const PrimitiveSet* prims_ = nullptr;
   std::vector<Node, ArrayAllocator<Node>> nodes_;
   LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle
