@@ -106,5 +106,24 @@ TEST(CollideCommand, BadInputGivesClearErrors) {
             std::string::npos);
 }
 
+// Coordinates beyond kMaxCoordinate (1e12) are refused as the scene loader refuses them: a pose
+// scaling B by 1e300 made every float box infinite and brute force ran for minutes; a sphere of
+// radius 1e30 or a translation of 1e39 gave answers from overflowed boxes.
+TEST(CollideCommand, CoordinatesBeyondTheLimitAreRefused) {
+  EXPECT_NE(error_of(kCube + " " + kCube + " --scale-b 1e300")
+                .find("the pose of B (scale 1e+300)"
+                      " moves a vertex of triangle 0"),
+            std::string::npos);
+  EXPECT_NE(error_of(kCube + " " + kCube + " --translate-b 2e12,0,0")
+                .find("--translate-b: 2e+12 "
+                      "is beyond +-1e+12"),
+            std::string::npos);
+  EXPECT_NE(error_of(kCube + " --sphere 0,0,0,1e30").find("--sphere: 1e+30 is beyond"),
+            std::string::npos);
+  EXPECT_NE(error_of(kCube + " --box 0,0,0,1,1,1 --to 1e13,0,0").find("--to: 1e+13 is beyond"),
+            std::string::npos);
+  EXPECT_EQ(error_of(kCube + " " + kCube + " --scale-b 1e11 --translate-b 1e11,0,0"), "");
+}
+
 }  // namespace
 }  // namespace penumbra::app

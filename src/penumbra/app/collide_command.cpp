@@ -20,6 +20,7 @@
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/core/transform.h"
+#include "penumbra/geometry/primitive_set.h"
 #include "penumbra/scene/mesh_reader.h"
 
 namespace penumbra::app {
@@ -59,12 +60,39 @@ std::vector<double> parse_numbers(const std::string& option, const std::string& 
   return out;
 }
 
+/// Refuses coordinates (and radii, displacements) beyond kMaxCoordinate, as the scene loader and
+/// the mesh check do: beyond it the float boxes of the hierarchies overflow.
+void check_magnitudes(const std::string& option, const std::vector<double>& values) {
+  for (double v : values)
+    if (std::fabs(v) > kMaxCoordinate)
+      throw Error(
+          fmt::format("{}: {:g} is beyond +-{:g}, the largest coordinate penumbra handles "
+                      "exactly (docs/robustness.md)",
+                      option, v, kMaxCoordinate));
+}
+
+/// Refuses a pose that moves a vertex of mesh B beyond kMaxCoordinate.
+void check_posed(const CollisionMesh& b, const std::string& pose_text) {
+  for (size_t t = 0; t < b.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const DVec3 p = b.triangle(uint32_t(t))[k];
+      if (std::fabs(p.x) > kMaxCoordinate || std::fabs(p.y) > kMaxCoordinate ||
+          std::fabs(p.z) > kMaxCoordinate)
+        throw Error(
+            fmt::format("collide: the pose of B ({}) moves a vertex of triangle {} to ({:g}, {:g}, "
+                        "{:g}), beyond +-{:g}, the largest coordinate penumbra handles "
+                        "exactly",
+                        pose_text, t, p.x, p.y, p.z, kMaxCoordinate));
+    }
+}
+
 /// The pose of mesh B: scale, then rotate, then translate (all about the origin).
 Transform pose_b(const CollideArgs& args, std::string& text) {
   Transform pose;
   std::vector<std::string> parts;
   if (args.translate_b) {
     const auto t = parse_numbers("--translate-b", *args.translate_b, 3, "x,y,z");
+    check_magnitudes("--translate-b", t);
     // In double, so that the offset is exactly the number given.
     Mat4 m = Mat4::identity(), inv = Mat4::identity();
     for (int k = 0; k < 3; ++k) m.m[k][3] = t[k], inv.m[k][3] = -t[k];
@@ -184,23 +212,27 @@ void run_collide(const CollideArgs& args) {
   std::optional<collision::MovingBox> box;
   if (args.sphere) {
     const auto s = parse_numbers("--sphere", *args.sphere, 4, "cx,cy,cz,r");
+    check_magnitudes("--sphere", s);
     if (s[3] < 0) throw Error(fmt::format("--sphere: the radius {} is negative", s[3]));
     const DVec3 c(s[0], s[1], s[2]);
     DVec3 to = c;
     if (args.to) {
       const auto t = parse_numbers("--to", *args.to, 3, "x,y,z");
+      check_magnitudes("--to", t);
       to = {t[0], t[1], t[2]};
     }
     sphere = collision::MovingSphere{c, to, s[3]};
   }
   if (args.box) {
     const auto b = parse_numbers("--box", *args.box, 6, "minx,miny,minz,maxx,maxy,maxz");
+    check_magnitudes("--box", b);
     const DVec3 lo(b[0], b[1], b[2]), hi(b[3], b[4], b[5]);
     if (lo.x > hi.x || lo.y > hi.y || lo.z > hi.z)
       throw Error(fmt::format("--box: a minimum exceeds its maximum in '{}'", *args.box));
     DVec3 d;
     if (args.to) {
       const auto t = parse_numbers("--to", *args.to, 3, "dx,dy,dz");
+      check_magnitudes("--to", t);
       d = {t[0], t[1], t[2]};
     }
     box = collision::MovingBox{{lo, hi}, d};
@@ -224,6 +256,7 @@ void run_collide(const CollideArgs& args) {
 
   if (!args.mesh_b.empty()) {
     const CollisionMesh b(mesh_b, pose);
+    check_posed(b, pose_text);
     describe_mesh("B", args.mesh_b, b, pose_text, out["b"]);
     QueryStats st;
     std::vector<collision::TrianglePair> pairs;
