@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "penumbra/accel/build/kd_clip.h"
+#include "penumbra/core/dvec3.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 
@@ -78,11 +79,7 @@ uint32_t split(const PrimitiveSet& prims, const Bounds3& scene, uint32_t id, con
 /// Twice the area of triangle `id`, in double.
 double twice_area(const PrimitiveSet& prims, uint32_t id) {
   const Vec3* v = prims.triangle(id);
-  const double e1[3] = {double(v[1].x) - v[0].x, double(v[1].y) - v[0].y, double(v[1].z) - v[0].z};
-  const double e2[3] = {double(v[2].x) - v[0].x, double(v[2].y) - v[0].y, double(v[2].z) - v[0].z};
-  const double c[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
-                       e1[0] * e2[1] - e1[1] * e2[0]};
-  return std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+  return length(cross(DVec3(v[1]) - DVec3(v[0]), DVec3(v[2]) - DVec3(v[0])));
 }
 
 }  // namespace
