@@ -60,7 +60,7 @@ TEST(SahCollapse, PlannedCostIsTheBuiltTreesAndAtMostTheGreedyOne) {
   for (const auto& scene : {random_soup(3000, 3), torus(40, 30), room_with_boxes(30, 4)}) {
     for (const char* width : {"8", "4"}) {
       const std::string base = std::string("bvh:width=") + width;
-      auto greedy = make_accelerator(base);
+      auto greedy = make_accelerator(base + ",collapse=greedy");
       auto sah = make_accelerator(base + ",collapse=sah");
       greedy->build(scene.prims);
       sah->build(scene.prims);

@@ -54,7 +54,7 @@ const Registry<Factory>& registry() {
       {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
       {"bvh",
        "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
-       "trav=2, build=binned|median|sweep, collapse=greedy|sah, nodes=full|compressed (8-wide: "
+       "trav=2, build=binned|median|sweep, collapse=sah|greedy, nodes=full|compressed (8-wide: "
        "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
        "as extra references for large triangles, F in [0, 4])",
        create_bvh},
@@ -64,7 +64,8 @@ const Registry<Factory>& registry() {
        create_bvh},
       {"bvh:nodes=compressed", "bvh with 128-byte nodes, child boxes quantised to bytes",
        create_bvh},
-      {"bvh:collapse=sah", "bvh collapsed from the binary tree by the SAH-optimal collapse",
+      {"bvh:collapse=greedy",
+       "bvh collapsed from the binary tree greedily (largest-area child opened first)",
        create_bvh},
       {"bvh:presplit=0.5",
        "bvh over pre-split large triangles: up to 50 % more references, split at grid planes",

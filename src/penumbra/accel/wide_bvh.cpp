@@ -192,7 +192,7 @@ struct StackEntry {
 template <int W, class Node>
 WideBvh<W, Node>::WideBvh(const ParamList& params) {
   params_ = read_bvh_build_params(params);
-  const std::string collapse = params.get_string("collapse", "greedy");
+  const std::string collapse = params.get_string("collapse", "sah");
   if (collapse != "greedy" && collapse != "sah")
     throw Error(fmt::format("{}: parameter 'collapse' must be greedy or sah, got '{}'",
                             params.name(), collapse));

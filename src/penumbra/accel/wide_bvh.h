@@ -7,8 +7,8 @@
 /// the binary tree's dependent node fetches. Children are visited nearest first.
 ///
 /// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
-/// collapse=greedy|sah (largest-area opening, or the SAH-optimal collapse of
-/// build/wide_collapse.h); the 8-wide one also nodes=full|compressed (the node layout).
+/// collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h, the default, or
+/// largest-area opening); the 8-wide one also nodes=full|compressed (the node layout).
 #include <string>
 #include <vector>
 
@@ -48,7 +48,7 @@ class WideBvh final : public Accelerator {
 
   std::string name_;
   BvhBuildParams params_;
-  bool sah_collapse_ = false;  ///< collapse=sah: the SAH-optimal collapse, else greedy
+  bool sah_collapse_ = true;  ///< collapse=sah (default): the SAH-optimal collapse, else greedy
   double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
   const PrimitiveSet* prims_ = nullptr;
   std::vector<Node, ArrayAllocator<Node>> nodes_;
