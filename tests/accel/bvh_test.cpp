@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 
 #include "penumbra/accel/build/binned_sah.h"
@@ -11,6 +12,7 @@
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
+#include "penumbra/core/rng.h"
 #include "test_scenes.h"
 
 namespace penumbra::test {
@@ -224,6 +226,48 @@ TEST(PrimRefs, SkipNonFiniteAndNormaliseNegativeZero) {
   EXPECT_EQ(refs.refs[2].id, 4u);
   EXPECT_FALSE(std::signbit(refs.refs[2].lo.x));
   EXPECT_EQ(refs.bounds, Bounds3({0, 0, 0}, {1, 1, 0}));
+}
+
+// Sets of triangles take their own (vectorised) path: it must give every triangle the box
+// prim_bounds gives it, skip the same ones, and the same totals, over several parallel chunks.
+TEST(PrimRefs, TriangleSetsGetTheBoxesOfPrimBounds) {
+  Pcg32 rng(17);
+  TriangleMesh m;
+  const float hostile[] = {-0.0f, 0.0f, kMaxCoordinate, -kMaxCoordinate,
+                           std::nextafter(kMaxCoordinate, kInfinity), kInfinity, -kInfinity,
+                           std::nanf("")};
+  for (int i = 0; i < 3 * 40000; ++i) {
+    Vec3 p{rng.next_float() * 2 - 1, rng.next_float() * 2 - 1, rng.next_float() * 2 - 1};
+    if (rng.next_float() < 0.01f) p[int(rng.next_float() * 3) % 3] = hostile[int(rng.next_float() * 8) % 8];
+    m.positions.push_back(p);
+    m.indices.push_back(uint32_t(i));
+  }
+  PrimitiveSet prims;
+  prims.add_mesh(m, Transform(), 0);
+  ASSERT_TRUE(prims.all_triangles());
+  const PrimRefs refs = make_prim_refs(prims);
+  Bounds3 bounds, centroids;
+  size_t k = 0, skipped = 0;
+  for (uint32_t id = 0; id < prims.size(); ++id) {
+    const Bounds3 b = prims.prim_bounds(id);
+    if (b.empty()) {
+      ++skipped;
+      continue;
+    }
+    ASSERT_LT(k, refs.refs.size());
+    const PrimRef& r = refs.refs[k++];
+    ASSERT_EQ(r.id, id);
+    const Vec3 lo = b.lo + Vec3(0.0f), hi = b.hi + Vec3(0.0f);
+    EXPECT_EQ(std::memcmp(&r.lo, &lo, sizeof lo), 0) << id;
+    EXPECT_EQ(std::memcmp(&r.hi, &hi, sizeof hi), 0) << id;
+    EXPECT_EQ(r.pad, 0u);
+    bounds.extend(Bounds3(lo, hi));
+    centroids.extend(lo + hi);
+  }
+  EXPECT_EQ(k, refs.refs.size());
+  EXPECT_GT(skipped, 100u);  // the hostile values did reach the path
+  EXPECT_EQ(refs.bounds, bounds);
+  EXPECT_EQ(refs.centroid_bounds, centroids);
 }
 
 }  // namespace
