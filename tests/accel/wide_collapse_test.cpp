@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <vector>
@@ -11,7 +12,9 @@
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/build/wide_collapse.h"
 #include "penumbra/accel/registry.h"
+#include "penumbra/accel/wide_bvh.h"
 #include "penumbra/core/error.h"
+#include "penumbra/core/parallel.h"
 #include "test_scenes.h"
 
 namespace penumbra::test {
@@ -114,6 +117,38 @@ TEST(SahCollapse, ChildrenPartitionTheSubtreeIntoAtMostWidthSlots) {
     }
   }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), long(seen.size()));
+}
+
+// Large enough for the plan's parallel tasks (over 2^16 rows) and the collapse's: the wide tree
+// must be the same bytes at every thread count.
+TEST(SahCollapse, SameWideTreeForEveryThreadCount) {
+  const TestScene s = torus(400, 250);
+  for (const char* spec : {"bvh", "bvh:collapse=greedy", "bvh4"}) {
+    std::vector<unsigned char> reference;
+    for (int threads : {1, 2, 3, 8}) {
+      const ThreadLimit limit(threads);
+      auto accel = make_accelerator(spec);
+      accel->build(s.prims);
+      std::vector<unsigned char> bytes;
+      if (const auto* w8 = dynamic_cast<const WideBvh<8>*>(accel.get())) {
+        const auto nodes = w8->nodes();
+        bytes.assign(reinterpret_cast<const unsigned char*>(nodes.data()),
+                     reinterpret_cast<const unsigned char*>(nodes.data()) + nodes.size_bytes());
+      } else if (const auto* w4 = dynamic_cast<const WideBvh<4>*>(accel.get())) {
+        const auto nodes = w4->nodes();
+        bytes.assign(reinterpret_cast<const unsigned char*>(nodes.data()),
+                     reinterpret_cast<const unsigned char*>(nodes.data()) + nodes.size_bytes());
+      }
+      ASSERT_FALSE(bytes.empty()) << spec;
+      if (reference.empty()) {
+        reference = bytes;
+        continue;
+      }
+      ASSERT_EQ(bytes.size(), reference.size()) << spec << ", " << threads << " threads";
+      EXPECT_EQ(std::memcmp(bytes.data(), reference.data(), bytes.size()), 0)
+          << spec << ", " << threads << " threads";
+    }
+  }
 }
 
 TEST(SahCollapse, ParameterIsChecked) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <limits>
 
+#include <oneapi/tbb/parallel_invoke.h>
+
 #include "penumbra/core/error.h"
 
 namespace penumbra {
@@ -23,11 +25,11 @@ SahCollapse::SahCollapse(const BvhNodeArray& bin, int width, float node_cost, in
   }
   cost_.assign(size_t(rows) * width_, 0.0f);
   choice_.assign(size_t(rows) * width_, 0);
-  plan(0);
+  plan(0, rows >= kParallelRows ? kParallelDepth : 0);
   root_cost_ = cost_[row(0)];
 }
 
-void SahCollapse::plan(uint32_t b) {
+void SahCollapse::plan(uint32_t b, int parallel_depth) {
   const BvhNode& n = bin_[b];
   const size_t r = row(b);
   const float area = n.bounds().surface_area();
@@ -36,8 +38,15 @@ void SahCollapse::plan(uint32_t b) {
     for (int i = 0; i < width_; ++i) cost_[r + i] = area * tests, choice_[r + i] = 0;
     return;
   }
-  plan(n.index);
-  plan(n.index + 1);
+  // The two subtrees' rows are disjoint: near the root they fill in parallel (the table is the
+  // same whatever the order).
+  if (parallel_depth > 0) {
+    tbb::parallel_invoke([&] { plan(n.index, parallel_depth - 1); },
+                         [&] { plan(n.index + 1, parallel_depth - 1); });
+  } else {
+    plan(n.index, 0);
+    plan(n.index + 1, 0);
+  }
   // One slot: this node becomes a wide node of its own over `width` slots.
   int k = 1;
   cost_[r] = node_cost_ * area + distribute(b, width_, k);

@@ -28,8 +28,14 @@ class SahCollapse {
   double cost() const;
 
  private:
-  /// Fills the table for the subtree of binary node `b`.
-  void plan(uint32_t b);
+  /// Tables of at least this many rows fill their top `kParallelDepth` levels' subtrees as
+  /// parallel tasks.
+  static constexpr uint32_t kParallelRows = 1 << 16;
+  static constexpr int kParallelDepth = 10;
+
+  /// Fills the table for the subtree of binary node `b`; its first `parallel_depth` levels split
+  /// into parallel tasks.
+  void plan(uint32_t b, int parallel_depth);
   /// The least cost of inner node `b`'s two children sharing `j` slots; `best_k` gets the left
   /// child's share.
   float distribute(uint32_t b, int j, int& best_k) const;
