@@ -143,29 +143,42 @@ SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map,
   bin_refs(refs, map, parallel, set);
   const int nb = map.bins;
   SahSplit best;
+  // The three axes' sweeps side by side (independent chains of box growth, which the processor
+  // overlaps); the choice below scans the costs in the order of one axis after another, so the
+  // split is the one a sweep per axis finds. From the right: area and count of bins [i, nb).
+  float right_area[3][kMaxBins];
+  uint32_t right_count[3][kMaxBins];
+  {
+    BoxAccumulator acc[3];
+    uint32_t n[3] = {0, 0, 0};
+    for (int i = nb - 1; i > 0; --i)
+      for (int a = 0; a < 3; ++a) {
+        acc[a].add(set.lo[a][i], set.hi[a][i]);
+        n[a] += set.count[a][i];
+        right_area[a][i] = acc[a].area(), right_count[a][i] = n[a];
+      }
+  }
+  // From the left, the cost at each boundary where both sides hold references.
+  float cost[3][kMaxBins];
+  bool valid[3][kMaxBins];
+  {
+    BoxAccumulator acc[3];
+    uint32_t n[3] = {0, 0, 0};
+    for (int i = 1; i < nb; ++i)
+      for (int a = 0; a < 3; ++a) {
+        acc[a].add(set.lo[a][i - 1], set.hi[a][i - 1]);
+        n[a] += set.count[a][i - 1];
+        valid[a][i] = n[a] != 0 && right_count[a][i] != 0;
+        cost[a][i] = acc[a].area() * sah_tests(n[a], block_shift) +
+                     right_area[a][i] * sah_tests(right_count[a][i], block_shift);
+      }
+  }
+  // Ties keep the first split (axis by axis, left to right).
   for (int a = 0; a < 3; ++a) {
     if (map.scale[a] == 0.0f) continue;
-    // Sweep from the right: area and count of bins [i, nb).
-    float right_area[kMaxBins];
-    uint32_t right_count[kMaxBins];
-    BoxAccumulator acc;
-    uint32_t n = 0;
-    for (int i = nb - 1; i > 0; --i) {
-      acc.add(set.lo[a][i], set.hi[a][i]);
-      n += set.count[a][i];
-      right_area[i] = acc.area(), right_count[i] = n;
-    }
-    // Sweep from the left, evaluating the cost at each boundary; ties keep the first split.
-    acc = BoxAccumulator();
-    n = 0;
-    for (int i = 1; i < nb; ++i) {
-      acc.add(set.lo[a][i - 1], set.hi[a][i - 1]);
-      n += set.count[a][i - 1];
-      if (n == 0 || right_count[i] == 0) continue;
-      const float cost = acc.area() * sah_tests(n, block_shift) +
-                         right_area[i] * sah_tests(right_count[i], block_shift);
-      if (best.axis < 0 || cost < best.cost) best.axis = a, best.pos = i, best.cost = cost;
-    }
+    for (int i = 1; i < nb; ++i)
+      if (valid[a][i] && (best.axis < 0 || cost[a][i] < best.cost))
+        best.axis = a, best.pos = i, best.cost = cost[a][i];
   }
   if (best.axis < 0) return best;
   for (int i = 0; i < nb; ++i) {
