@@ -240,7 +240,8 @@ SahSplit reference_binned_split(std::span<const PrimRef> refs, const BinMapping&
       for (int k = 0; k < i; ++k) l.extend(box[size_t(k)]), nl += count[size_t(k)];
       for (int k = nb - 1; k >= i; --k) r.extend(box[size_t(k)]), nr += count[size_t(k)];
       if (nl == 0 || nr == 0) continue;
-      const float cost = area(l) * sah_tests(nl, block_shift) + area(r) * sah_tests(nr, block_shift);
+      const float cost =
+          area(l) * sah_tests(nl, block_shift) + area(r) * sah_tests(nr, block_shift);
       if (best.axis < 0 || cost < best.cost) best.axis = a, best.pos = i, best.cost = cost;
     }
   }
@@ -295,12 +296,18 @@ TEST(PrimRefs, SkipNonFiniteAndNormaliseNegativeZero) {
 TEST(PrimRefs, TriangleSetsGetTheBoxesOfPrimBounds) {
   Pcg32 rng(17);
   TriangleMesh m;
-  const float hostile[] = {-0.0f, 0.0f, kMaxCoordinate, -kMaxCoordinate,
-                           std::nextafter(kMaxCoordinate, kInfinity), kInfinity, -kInfinity,
+  const float hostile[] = {-0.0f,
+                           0.0f,
+                           kMaxCoordinate,
+                           -kMaxCoordinate,
+                           std::nextafter(kMaxCoordinate, kInfinity),
+                           kInfinity,
+                           -kInfinity,
                            std::nanf("")};
   for (int i = 0; i < 3 * 40000; ++i) {
     Vec3 p{rng.next_float() * 2 - 1, rng.next_float() * 2 - 1, rng.next_float() * 2 - 1};
-    if (rng.next_float() < 0.01f) p[int(rng.next_float() * 3) % 3] = hostile[int(rng.next_float() * 8) % 8];
+    if (rng.next_float() < 0.01f)
+      p[int(rng.next_float() * 3) % 3] = hostile[int(rng.next_float() * 8) % 8];
     m.positions.push_back(p);
     m.indices.push_back(uint32_t(i));
   }

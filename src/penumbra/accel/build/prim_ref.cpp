@@ -56,7 +56,8 @@ ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, P
     // Vertices 0 and 1 from 16-byte loads inside the triangle's 36 bytes; vertex 2 from the
     // load ending at its last coordinate, rotated (lane 3 is never used).
     const __m128 a = _mm_loadu_ps(v), b = _mm_loadu_ps(v + 3);
-    const __m128 c = _mm_shuffle_ps(_mm_loadu_ps(v + 5), _mm_loadu_ps(v + 5), _MM_SHUFFLE(0, 3, 2, 1));
+    const __m128 tail = _mm_loadu_ps(v + 5);
+    const __m128 c = _mm_shuffle_ps(tail, tail, _MM_SHUFFLE(0, 3, 2, 1));
     const __m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, a), limit),
                                             _mm_cmple_ps(_mm_andnot_ps(sign, b), limit)),
                                  _mm_cmple_ps(_mm_andnot_ps(sign, c), limit));
