@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <sys/resource.h>
+
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
@@ -20,6 +22,15 @@
 #include "terrain.h"
 
 namespace {
+
+/// Minor page faults of the process so far: each is a fresh page (4 KiB, or 2 MiB where huge
+/// pages were granted) touched for the first time, which on some virtual machines costs
+/// microseconds: a build that faults in tens of thousands of pages spends much of its time there.
+long minor_faults() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return u.ru_minflt;
+}
 
 using namespace penumbra;
 
@@ -77,8 +88,8 @@ int main(int argc, char** argv) {
   std::vector<Row> rows;
   std::vector<bool> stopped(names.size(), false);
   std::printf("terrain builds at %d thread(s); ns/tri and ns/(tri log2 N)\n", threads);
-  std::printf("%-14s %10s %10s %8s %12s\n", "accel", "triangles", "build ms", "ns/tri",
-              "ns/(t log N)");
+  std::printf("%-14s %10s %10s %8s %12s %10s\n", "accel", "triangles", "build ms", "ns/tri",
+              "ns/(t log N)", "faults");
   for (const int side : kSides) {
     PrimitiveSet prims;
     prims.add_mesh(bench::terrain(side), Transform(), 0);
@@ -87,12 +98,15 @@ int main(int argc, char** argv) {
       if (stopped[k]) continue;
       const int builds = n < 1'000'000 ? 3 : 1;
       std::vector<double> ms;
+      long faults = 0;
       try {
         for (int b = 0; b < builds; ++b) {
           auto accel = make_accelerator(names[k]);
+          const long f0 = minor_faults();
           const Timer t;
           accel->build(prims);
           ms.push_back(t.elapsed_ms());
+          faults = minor_faults() - f0;  // the last build's
         }
       } catch (const Error& e) {  // a structure's own limit (bsp's fragment cap): noted, skipped
         std::printf("%-14s %10zu refused: %s\n", names[k].c_str(), n, e.what());
@@ -101,8 +115,8 @@ int main(int argc, char** argv) {
       }
       std::sort(ms.begin(), ms.end());
       const double m = ms[ms.size() / 2], per = m * 1e6 / double(n);
-      std::printf("%-14s %10zu %10.1f %8.1f %12.2f\n", names[k].c_str(), n, m, per,
-                  per / std::log2(double(n)));
+      std::printf("%-14s %10zu %10.1f %8.1f %12.2f %10ld\n", names[k].c_str(), n, m, per,
+                  per / std::log2(double(n)), faults);
       std::fflush(stdout);
       rows.push_back({names[k], n, m});
       if (m > budget_s * 1000) stopped[k] = true;

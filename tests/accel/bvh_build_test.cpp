@@ -9,6 +9,7 @@
 
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_builder.h"
+#include "penumbra/accel/build/bvh_split.h"
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
@@ -185,6 +186,50 @@ TEST(BvhBuild, SweepSplitIsTheExactSahMinimumAtEveryNode) {
     }
     EXPECT_GT(checked, 10u);
     EXPECT_GT(binned_checked, checked);
+  }
+}
+
+// The binned builder skips binning a node that fits a leaf costing no more than a traversal
+// step (the SAH test cannot choose a split there): every node of at most `leaf` references must
+// still be a leaf exactly when its binned split loses to a leaf, whatever the traversal cost and
+// SIMD block width (a shortcut that ignored either would split or merge nodes here).
+TEST(BvhBuild, BinnedLeafDecisionIsTheSahTerminationTest) {
+  for (const TestScene& s : {random_soup(800, 41), room_with_boxes(12, 42), torus(16, 12)}) {
+    for (const float trav : {0.25f, 1.0f, 2.0f, 5.0f}) {
+      for (const int shift : {0, 2}) {
+        SCOPED_TRACE(s.name + " trav " + std::to_string(trav) + " shift " + std::to_string(shift));
+        BvhBuildParams p = params_of("bvh:leaf=8");
+        p.traversal_cost = trav, p.block_shift = shift;
+        const BinaryBvh t = build_binary_bvh(make_prim_refs(s.prims), p);
+        size_t small = 0, split = 0;
+        // Each node with its reference range, checked where it holds 2..8 references.
+        const auto visit = [&](auto&& self, uint32_t k) -> std::pair<uint32_t, uint32_t> {
+          const BvhNode& n = t.nodes[k];
+          std::pair<uint32_t, uint32_t> range{n.index, n.index + n.count};
+          if (!n.is_leaf()) {
+            const auto l = self(self, n.index);
+            const auto r = self(self, n.index + 1);
+            range = {l.first, r.second};
+          }
+          const uint32_t count = range.second - range.first;
+          if (count >= 2 && count <= 8) {
+            const std::span<const PrimRef> refs(t.refs.data() + range.first, count);
+            Bounds3 centroids;
+            for (const PrimRef& r : refs) centroids.extend(r.centroid2());
+            const SahSplit best = find_binned_split(
+                refs, BinMapping(centroids, std::max(4, int(count))), false, shift);
+            const bool leaf =
+                best.axis < 0 || sah_prefers_leaf(count, n.bounds(), best.cost, trav, shift);
+            EXPECT_EQ(n.is_leaf(), leaf) << "node " << k << " of " << count << " references";
+            ++small, split += !n.is_leaf();
+          }
+          return range;
+        };
+        visit(visit, 0);
+        EXPECT_GT(small, 20u);
+        if (trav < 1.0f) EXPECT_GT(split, 0u) << "cheap traversal splits some small nodes";
+      }
+    }
   }
 }
 

@@ -70,7 +70,8 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
                  r.accel, *r.nodes_per_ray, r.prims_per_ray.value_or(0), figures);
     }
   fmt::print(
-      "(build ms at {}; refs/prim: leaf references per triangle. Mrays/s, medians of {} run(s):\n"
+      "(build ms at {} and Mrays/s: medians of {} run(s); refs/prim: leaf references per "
+      "triangle.\n"
       " primary = closest hits of the camera's rays, incoher. = closest hits of random rays,\n"
       " occlus. = any hit of the same rays, bounce = closest hits of one diffuse bounce from each\n"
       " camera hit, shadow = any hit of a shadow ray from each camera hit to a square light above\n"

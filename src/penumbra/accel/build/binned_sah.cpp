@@ -9,7 +9,7 @@
 #include "penumbra/core/parallel.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <immintrin.h>
 #endif
 
 namespace penumbra {
@@ -21,33 +21,51 @@ constexpr size_t kBinChunk = 32768;
 /// Nodes with at least this many references bin into two alternating bin sets.
 constexpr size_t kSpareMin = 256;
 
-/// Bin boxes (as 4-float lo and hi vectors, the 4th lane unused) and counts of the three axes.
+/// Bin boxes and counts of the three axes. A box is stored as eight floats (lo.x, lo.y, lo.z, -,
+/// -hi.x, -hi.y, -hi.z, -) with the upper corner negated, so that growing it by a reference is
+/// one minimum over eight lanes: a reference costs a load, a minimum and a store per axis (AVX),
+/// half the instructions of separate lower and upper corners. The 4th and 8th lanes carry the
+/// reference's id and padding bits and are never read.
 struct BinSet {
   int bins;
-  alignas(16) float lo[3][kMaxBins][4];
-  alignas(16) float hi[3][kMaxBins][4];
+  alignas(32) float box[3][kMaxBins][8];
   uint32_t count[3][kMaxBins];
 
   /// Empty bins (only the `bins` in use are initialised).
   explicit BinSet(int bins_) : bins(bins_) {
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < bins; ++i) {
-        for (int k = 0; k < 4; ++k) lo[a][i][k] = kInfinity, hi[a][i][k] = -kInfinity;
+        for (int k = 0; k < 8; ++k) box[a][i][k] = kInfinity;
         count[a][i] = 0;
       }
   }
 
-  /// Adds one reference (SIMD: `org`, `scl` and `top` come from the mapping, see add()).
 #if defined(__SSE2__)
-  void add_one(const PrimRef& r, __m128 org, __m128 scl, __m128 top) {
+  /// The bins of one reference on the three axes (SIMD: `org`, `scl` and `top` come from the
+  /// mapping, see add()), as the low three lanes.
+  static __m128i bins_of(const PrimRef& r, __m128 org, __m128 scl, __m128 top) {
     const __m128 l = _mm_load_ps(&r.lo.x), h = _mm_load_ps(&r.hi.x);
     __m128 f = _mm_mul_ps(_mm_sub_ps(_mm_add_ps(l, h), org), scl);
     f = _mm_min_ps(_mm_max_ps(f, _mm_setzero_ps()), top);
-    alignas(16) int32_t b[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(b), _mm_cvttps_epi32(f));
+    return _mm_cvttps_epi32(f);
+  }
+  /// Grows the bins `b` (one per axis) by reference `r`.
+  void grow(const PrimRef& r, const int32_t* b) {
+#if defined(__AVX__)
+    const __m256 g = _mm256_xor_ps(_mm256_load_ps(&r.lo.x),
+                                   _mm256_setr_ps(0, 0, 0, 0, -0.0f, -0.0f, -0.0f, -0.0f));
+#else
+    const __m128 l = _mm_load_ps(&r.lo.x);
+    const __m128 nh = _mm_xor_ps(_mm_load_ps(&r.hi.x), _mm_set1_ps(-0.0f));
+#endif
     for (int a = 0; a < 3; ++a) {
-      _mm_store_ps(lo[a][b[a]], _mm_min_ps(_mm_load_ps(lo[a][b[a]]), l));
-      _mm_store_ps(hi[a][b[a]], _mm_max_ps(_mm_load_ps(hi[a][b[a]]), h));
+      float* x = box[a][b[a]];
+#if defined(__AVX__)
+      _mm256_store_ps(x, _mm256_min_ps(_mm256_load_ps(x), g));
+#else
+      _mm_store_ps(x, _mm_min_ps(_mm_load_ps(x), l));
+      _mm_store_ps(x + 4, _mm_min_ps(_mm_load_ps(x + 4), nh));
+#endif
       ++count[a][b[a]];
     }
   }
@@ -55,7 +73,10 @@ struct BinSet {
 
   /// Adds `refs` to the bins of `map`; `spare` (same bin count) takes every other reference.
   /// Neighbouring references mostly fall into the same bins, and alternating between two bin
-  /// sets halves the chains of dependent read-modify-writes on one bin.
+  /// sets halves the chains of dependent read-modify-writes on one bin. The bins of a group of
+  /// references are computed before any of them is added: interleaved, each bin update waited
+  /// for the previous reference's whole chain (its bin address from its coordinates), since the
+  /// processor cannot tell in advance that a bin load does not alias the store before it.
   void add(std::span<const PrimRef> refs, const BinMapping& map, BinSet* spare) {
 #if defined(__SSE2__)
     // The clamp reproduces BinMapping::bin exactly (max_ps(NaN, 0) is 0), so partitioning
@@ -63,43 +84,67 @@ struct BinSet {
     const __m128 org = _mm_setr_ps(map.origin.x, map.origin.y, map.origin.z, 0.0f);
     const __m128 scl = _mm_setr_ps(map.scale.x, map.scale.y, map.scale.z, 0.0f);
     const __m128 top = _mm_set1_ps(float(bins - 1));
-    size_t i = 0;
-    if (spare)
-      for (; i + 1 < refs.size(); i += 2) {
-        add_one(refs[i], org, scl, top);
-        spare->add_one(refs[i + 1], org, scl, top);
+    constexpr size_t kGroup = 32;
+    alignas(16) int32_t b[kGroup][4];
+    BinSet* other = spare ? spare : this;
+    for (size_t i = 0; i < refs.size(); i += kGroup) {
+      const size_t m = std::min(kGroup, refs.size() - i);
+      for (size_t k = 0; k < m; ++k)
+        _mm_store_si128(reinterpret_cast<__m128i*>(b[k]), bins_of(refs[i + k], org, scl, top));
+      size_t k = 0;
+      for (; k + 1 < m; k += 2) {
+        grow(refs[i + k], b[k]);
+        other->grow(refs[i + k + 1], b[k + 1]);
       }
-    for (; i < refs.size(); ++i) add_one(refs[i], org, scl, top);
+      if (k < m) grow(refs[i + k], b[k]);
+    }
 #else
     (void)spare;
     for (const PrimRef& r : refs) {
       const Vec3 c = r.centroid2();
       for (int a = 0; a < 3; ++a) {
         const int i = map.bin(c[a], a);
+        float* x = box[a][i];
         for (int k = 0; k < 3; ++k)
-          lo[a][i][k] = std::min(lo[a][i][k], r.lo[k]),
-          hi[a][i][k] = std::max(hi[a][i][k], r.hi[k]);
+          x[k] = std::min(x[k], r.lo[k]), x[4 + k] = std::min(x[4 + k], -r.hi[k]);
         ++count[a][i];
       }
     }
 #endif
   }
-  /// Adds the bins of `o` (exact: min, max and integer sums).
+  /// Adds the bins of `o` (exact: minima and integer sums).
   void merge(const BinSet& o) {
     for (int a = 0; a < 3; ++a)
       for (int i = 0; i < bins; ++i) {
-        for (int k = 0; k < 4; ++k)
-          lo[a][i][k] = std::min(lo[a][i][k], o.lo[a][i][k]),
-          hi[a][i][k] = std::max(hi[a][i][k], o.hi[a][i][k]);
+        for (int k = 0; k < 8; ++k) box[a][i][k] = std::min(box[a][i][k], o.box[a][i][k]);
         count[a][i] += o.count[a][i];
       }
   }
   /// Box of bin i on axis a.
-  Bounds3 box(int a, int i) const {
+  Bounds3 bounds(int a, int i) const {
+    const float* x = box[a][i];
     Bounds3 b;
-    b.lo = {lo[a][i][0], lo[a][i][1], lo[a][i][2]};
-    b.hi = {hi[a][i][0], hi[a][i][1], hi[a][i][2]};
+    b.lo = {x[0], x[1], x[2]};
+    b.hi = {-x[4], -x[5], -x[6]};
     return b;
+  }
+};
+
+/// A union of bin boxes (BinSet's layout) grown one bin at a time, with the area of
+/// BoxAccumulator: the same floats, since negating the upper corner back is exact.
+struct BinBoxAccumulator {
+  BoxAccumulator acc;
+  void add(const float* x) {
+#if defined(__SSE2__)
+    acc.lo = _mm_min_ps(acc.lo, _mm_load_ps(x));
+    acc.hi = _mm_max_ps(acc.hi, _mm_xor_ps(_mm_load_ps(x + 4), _mm_set1_ps(-0.0f)));
+#else
+    const float l[3] = {x[0], x[1], x[2]}, h[3] = {-x[4], -x[5], -x[6]};
+    acc.add(l, h);
+#endif
+  }
+  float area() const {
+    return acc.area();
   }
 };
 
@@ -149,11 +194,11 @@ SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map,
   float right_area[3][kMaxBins];
   uint32_t right_count[3][kMaxBins];
   {
-    BoxAccumulator acc[3];
+    BinBoxAccumulator acc[3];
     uint32_t n[3] = {0, 0, 0};
     for (int i = nb - 1; i > 0; --i)
       for (int a = 0; a < 3; ++a) {
-        acc[a].add(set.lo[a][i], set.hi[a][i]);
+        acc[a].add(set.box[a][i]);
         n[a] += set.count[a][i];
         right_area[a][i] = acc[a].area(), right_count[a][i] = n[a];
       }
@@ -162,11 +207,11 @@ SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map,
   float cost[3][kMaxBins];
   bool valid[3][kMaxBins];
   {
-    BoxAccumulator acc[3];
+    BinBoxAccumulator acc[3];
     uint32_t n[3] = {0, 0, 0};
     for (int i = 1; i < nb; ++i)
       for (int a = 0; a < 3; ++a) {
-        acc[a].add(set.lo[a][i - 1], set.hi[a][i - 1]);
+        acc[a].add(set.box[a][i - 1]);
         n[a] += set.count[a][i - 1];
         valid[a][i] = n[a] != 0 && right_count[a][i] != 0;
         cost[a][i] = acc[a].area() * sah_tests(n[a], block_shift) +
@@ -184,9 +229,9 @@ SahSplit find_binned_split(std::span<const PrimRef> refs, const BinMapping& map,
   for (int i = 0; i < nb; ++i) {
     const int a = best.axis;
     if (i < best.pos)
-      best.left.extend(set.box(a, i)), best.left_count += set.count[a][i];
+      best.left.extend(set.bounds(a, i)), best.left_count += set.count[a][i];
     else
-      best.right.extend(set.box(a, i)), best.right_count += set.count[a][i];
+      best.right.extend(set.bounds(a, i)), best.right_count += set.count[a][i];
   }
   return best;
 }
