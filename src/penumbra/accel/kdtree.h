@@ -27,7 +27,7 @@
 #include <vector>
 
 #include "penumbra/accel/accelerator.h"
-#include "penumbra/accel/build/array_allocator.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/accel/build/kd_node.h"
 #include "penumbra/accel/triangle_blocks.h"
 #include "penumbra/core/params.h"

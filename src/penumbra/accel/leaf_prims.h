@@ -6,7 +6,7 @@
 #include <span>
 #include <vector>
 
-#include "penumbra/accel/build/array_allocator.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/accel/build/prim_ref.h"
 #include "penumbra/accel/traversal_cost.h"
 #include "penumbra/geometry/primitive_set.h"

@@ -15,7 +15,7 @@
 #include <type_traits>
 #include <vector>
 
-#include "penumbra/accel/build/array_allocator.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/accel/build/prim_ref.h"
 #include "penumbra/geometry/float_error.h"
 #include "penumbra/geometry/hit.h"

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "penumbra/accel/accelerator.h"
-#include "penumbra/accel/build/array_allocator.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/core/params.h"
 
 namespace penumbra {

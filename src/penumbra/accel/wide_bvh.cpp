@@ -54,16 +54,6 @@ class Collapser {
   Collapser(const BvhNodeArray& bin, WideNodeArray<W>& out, const SahCollapse* plan)
       : bin_(bin), out_(out), plan_(plan) {}
 
-  /// Number of wide nodes emit(b) will make (to allocate them exactly).
-  size_t count(uint32_t b) const {
-    uint32_t kids[W];
-    const int n = gather(b, kids);
-    size_t total = 1;
-    for (int i = 0; i < n; ++i)
-      if (!bin_[kids[i]].is_leaf()) total += count(kids[i]);
-    return total;
-  }
-
   /// Emits the wide node for binary inner node `b`; returns its index.
   uint32_t emit(uint32_t b, size_t depth) {
     uint32_t kids[W];
@@ -220,12 +210,16 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
     plan.emplace(tree.nodes, W, params.traversal_cost, params.block_shift);
   Collapser<W> collapser(tree.nodes, full, plan ? &*plan : nullptr);
   if (!tree.nodes.empty()) {
-    full.reserve(tree.nodes[0].is_leaf() ? 1 : collapser.count(0));
+    // At most one wide node per binary inner node: reserving that bound (only the pages
+    // written are touched) and trimming afterwards costs a copy of the wide nodes, where counting
+    // them first walked the plan a second time.
+    full.reserve(tree.nodes[0].is_leaf() ? 1 : tree.leaves - 1);
     if (tree.nodes[0].is_leaf())
       collapser.emit_leaf_root(tree.nodes[0]);
     else
       collapser.emit(0, 0);
   }
+  full.shrink_to_fit();
   if (presplit) dedupe_leaves<W>(full, tree.refs);
   const double sah_cost = wide_sah_cost(full, params.traversal_cost, params.block_shift);
   leaf_ = LeafPrims{};

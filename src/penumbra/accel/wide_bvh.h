@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "penumbra/accel/accelerator.h"
-#include "penumbra/accel/build/array_allocator.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/leaf_prims.h"
 #include "penumbra/accel/triangle_blocks.h"

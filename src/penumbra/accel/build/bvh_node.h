@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "penumbra/accel/build/array_allocator.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/core/bounds.h"
 
 namespace penumbra {

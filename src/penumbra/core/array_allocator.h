@@ -1,6 +1,6 @@
 #pragma once
-/// An allocator for the large flat arrays of acceleration structures: cache-line aligned, and on
-/// Linux backed by transparent huge pages when large.
+/// An allocator for large flat arrays (acceleration structures, primitive sets): cache-line
+/// aligned, and on Linux backed by transparent huge pages when large.
 #include <cstddef>
 #include <new>
 
