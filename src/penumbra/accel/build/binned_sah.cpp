@@ -241,22 +241,25 @@ namespace {
 /// Centroid bounds (of lo + hi) grown one reference at a time; SIMD where available.
 struct CentroidBounds {
   BoxAccumulator box;
-  void add(const PrimRef& r) {
 #if defined(__SSE2__)
-    const __m128 c = _mm_add_ps(_mm_load_ps(&r.lo.x), _mm_load_ps(&r.hi.x));
+  void add(__m128 lo, __m128 hi) {
+    const __m128 c = _mm_add_ps(lo, hi);
     box.lo = _mm_min_ps(box.lo, c);
     box.hi = _mm_max_ps(box.hi, c);
+  }
+  void add(const PrimRef& r) {
+    add(_mm_load_ps(&r.lo.x), _mm_load_ps(&r.hi.x));
+  }
 #else
+  void add(const PrimRef& r) {
     const Vec3 c = r.centroid2();
     box.add(&c.x, &c.x);
-#endif
   }
+#endif
 #if defined(__AVX__)
   /// add() of a reference held in a register (lo in the low half, hi in the high half).
   void add(__m256 r) {
-    const __m128 c = _mm_add_ps(_mm256_castps256_ps128(r), _mm256_extractf128_ps(r, 1));
-    box.lo = _mm_min_ps(box.lo, c);
-    box.hi = _mm_max_ps(box.hi, c);
+    add(_mm256_castps256_ps128(r), _mm256_extractf128_ps(r, 1));
   }
 #endif
   Bounds3 get() const {
@@ -280,11 +283,11 @@ size_t partition_axis(std::span<PrimRef> refs, const BinMapping& map, int pos, B
     while (i < j && goes_left(refs[i])) lc.add(refs[i++]);
     while (i < j && !goes_left(refs[j - 1])) rc.add(refs[--j]);
     if (i >= j) break;
-      // refs[i] belongs right and refs[j - 1] left: swap, then both are placed.
 #if defined(__AVX__)
-    // As two 32-byte registers, whose centroids are then taken from the registers: std::swap
-    // stored the fields one by one, and reading a reference back from those narrower stores
-    // stalled every swap (a store-forwarding failure).
+    // refs[i] belongs right and refs[j - 1] left: swap, then both are placed; as two 32-byte
+    // registers, whose centroids are then taken from the registers: std::swap stored the fields
+    // one by one, and reading a reference back from those narrower stores stalled every swap (a
+    // store-forwarding failure).
     float* a = &refs[i].lo.x;
     float* b = &refs[j - 1].lo.x;
     const __m256 x = _mm256_load_ps(a), y = _mm256_load_ps(b);
