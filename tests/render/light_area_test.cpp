@@ -184,6 +184,36 @@ TEST(AreaLight, MeshDirectionsFollowPdf) {
   expect_light_follows_pdf(tw, tw.light(), {1.5f, 1.2f, -2.0f}, {-1.5f, -1.2f, 2.0f}, 0.6f, 7);
 }
 
+TEST(AreaLight, TrianglePairsThatFormAParallelogramAreOneUnit) {
+  // The cube's faces are fans of two triangles: six parallelograms. The mesh below has, in order,
+  // a parallelogram pair (a sheared quad), a kite (two triangles sharing an edge whose other
+  // vertices are not mirror images: apart), a pair wound in opposite directions (front sides
+  // facing away from each other: apart) and a lone triangle.
+  const TestWorld cube(kCube);
+  EXPECT_EQ(static_cast<const AreaLight&>(cube.light()).unit_count(), 6u);
+  const TestWorld tw(R"({"type": "mesh", "material": "b", "emission": 1,
+      "positions": [[0, 0, 0], [2, 0, 0], [2.5, 1, 0], [0.5, 1, 0],
+                    [3, 0, 0], [4, 0, 0], [4, 1, 0], [3.2, 3, 0],
+                    [5, 0, 0], [6, 0, 0], [6, 1, 0], [5, 1, 0],
+                    [7, 0, 0], [8, 0, 0], [7, 1, 0]],
+      "indices": [[0, 1, 2], [0, 2, 3], [4, 5, 6], [4, 6, 7], [8, 9, 10], [8, 11, 10],
+                  [12, 13, 14]]})");
+  const auto& light = static_cast<const AreaLight&>(tw.light());
+  EXPECT_EQ(light.unit_count(), 6u);
+  // Every primitive keeps its share of the area, pairs included, and the shares sum to 1.
+  const PrimitiveSet& prims = tw.world->primitives();
+  double sum = 0;
+  for (uint32_t id = 0; id < prims.size(); ++id) {
+    const double share = length(tw.world->area_normal(id)) / light.area();
+    EXPECT_NEAR(light.prim_pmf(id), share, 1e-6) << "primitive " << id;
+    sum += light.prim_pmf(id);
+  }
+  EXPECT_NEAR(sum, 1.0, 1e-6);
+  // Seen from the front (+z; the wound-back triangle gives nothing from there), the directions
+  // follow pdf_li over all of them.
+  expect_light_follows_pdf(tw, light, {4.0f, 0.5f, 1.5f}, {0, 0, -1}, 0.15f, 21);
+}
+
 TEST(AreaLight, TwoSidedFromBehindDirectionsFollowPdf) {
   // Seen from the side the normals point away from: rectangle (spherical) and triangle (area).
   const TestWorld tw(R"({"type": "quad", "origin": [-1, -1, 1], "edge1": [2, 0, 0],

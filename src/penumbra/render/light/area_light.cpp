@@ -98,114 +98,173 @@ struct SphereCone {
 
 }  // namespace
 
+namespace {
+
+/// Whether triangles a and b (vertices in their winding order, unit front normals na, nb) form a
+/// parallelogram: two shared vertices s0, s1 and the others x (of a) and y (of b) mirror images
+/// through the shared edge's midpoint, x + y = s0 + s1, within rounding, with the same front
+/// side. Then the parallelogram is x + s (s0 - x) + t (s1 - x), s, t in [0, 1].
+bool parallelogram_pair(const Vec3* a, const Vec3* b, Vec3 na, Vec3 nb, Vec3& o, Vec3& e1,
+                        Vec3& e2) {
+  int shared = 0, x = -1, y = -1;
+  bool in_b[3] = {false, false, false};
+  for (int i = 0; i < 3; ++i) {
+    bool found = false;
+    for (int j = 0; j < 3; ++j)
+      if (!in_b[j] && a[i] == b[j]) in_b[j] = found = true;
+    if (found) ++shared; else x = i;
+  }
+  if (shared != 2) return false;
+  for (int j = 0; j < 3; ++j)
+    if (!in_b[j]) y = j;
+  const Vec3 s0 = a[(x + 1) % 3], s1 = a[(x + 2) % 3];
+  e1 = s0 - a[x], e2 = s1 - a[x], o = a[x];
+  // Rounding of the vertices of a quad far from the origin can leave x + y a few ulps from
+  // s0 + s1; a larger gap is a different shape (then the triangles stay apart).
+  const Vec3 gap = a[x] + b[y] - s0 - s1;
+  const float tol = 1e-6f * (length(e1) + length(e2));
+  return length(gap) <= tol && dot(na, nb) > 0.99999f;
+}
+
+}  // namespace
+
 AreaLight::AreaLight(const World& world, const Emitter& e)
-    : world_(world), first_prim_(e.first_prim), radiance_(e.radiance), two_sided_(e.two_sided) {
+    : first_prim_(e.first_prim), radiance_(e.radiance), two_sided_(e.two_sided) {
   const PrimitiveSet& prims = world.primitives();
-  std::vector<double> sums;
-  double sum = 0;
-  for (uint32_t id = e.first_prim; id < e.first_prim + e.prim_count; ++id) {
+  const uint32_t count = uint32_t(e.prim_count);
+  std::vector<float> prim_area(count, 0.0f);
+  std::vector<Vec3> prim_normal(count);
+  for (uint32_t i = 0; i < count; ++i) {
+    const uint32_t id = first_prim_ + i;
     float a = 0;
-    bool rect = false;
     if (prims.kind(id) == PrimKind::kSphere) {
       a = 4.0f * kPi * prims.sphere(id).radius * prims.sphere(id).radius;
     } else {
       a = length(world.area_normal(id));
-      if (prims.kind(id) == PrimKind::kQuad) {
+      if (a > 0.0f) prim_normal[i] = normalize(world.area_normal(id));
+    }
+    prim_area[i] = a > 0.0f && std::isfinite(a) ? a : 0.0f;  // degenerate: emits nothing
+  }
+  prim_unit_.assign(count, 0);
+  prim_fraction_.assign(count, 1.0f);
+  for (uint32_t i = 0; i < count; ++i) {
+    const uint32_t id = first_prim_ + i;
+    Unit u;
+    u.local = i;
+    u.area = prim_area[i];
+    u.n = prim_normal[i];
+    switch (prims.kind(id)) {
+      case PrimKind::kTriangle: {
+        const Vec3* v = prims.triangle(id);
+        u.o = v[0], u.e1 = v[1] - v[0], u.e2 = v[2] - v[0];
+        Vec3 o, e1, e2;
+        if (i + 1 < count && prims.kind(id + 1) == PrimKind::kTriangle && u.area > 0.0f &&
+            prim_area[i + 1] > 0.0f &&
+            parallelogram_pair(v, prims.triangle(id + 1), prim_normal[i], prim_normal[i + 1], o,
+                               e1, e2)) {
+          u.kind = UnitKind::kParallelogram;
+          u.o = o, u.e1 = e1, u.e2 = e2;
+          u.area = prim_area[i] + prim_area[i + 1];
+          prim_unit_[i] = prim_unit_[i + 1] = uint32_t(units_.size());
+          prim_fraction_[i] = prim_area[i] / u.area;
+          prim_fraction_[i + 1] = prim_area[i + 1] / u.area;
+          units_.push_back(u);
+          ++i;
+          continue;
+        }
+        break;
+      }
+      case PrimKind::kQuad: {
         const QuadData& q = prims.quad(id);
-        rect = std::fabs(dot(q.e1, q.e2)) <= 1e-4f * length(q.e1) * length(q.e2);
+        u.o = q.p, u.e1 = q.e1, u.e2 = q.e2;
+        const bool rect = std::fabs(dot(q.e1, q.e2)) <= 1e-4f * length(q.e1) * length(q.e2);
+        u.kind = rect ? UnitKind::kRectangle : UnitKind::kParallelogram;
+        break;
+      }
+      case PrimKind::kSphere: {
+        const SphereData& sd = prims.sphere(id);
+        u.o = sd.center, u.e1 = {sd.radius, 0, 0};
+        u.kind = UnitKind::kSphere;
+        break;
       }
     }
-    if (!(a > 0.0f) || !std::isfinite(a)) a = 0.0f;  // degenerate primitives emit nothing
-    sum += a;
-    areas_.push_back(a);
-    normals_.push_back(a > 0.0f && prims.kind(id) != PrimKind::kSphere
-                           ? normalize(world.area_normal(id))
-                           : Vec3{});
-    rects_.push_back(rect);
-    sums.push_back(sum);
+    prim_unit_[i] = uint32_t(units_.size());
+    units_.push_back(u);
   }
+  double sum = 0;
+  std::vector<double> sums;
+  for (const Unit& u : units_) sums.push_back(sum += u.area);
   area_ = float(sum);
   if (!(sum > 0.0)) {
-    areas_.clear(), rects_.clear(), normals_.clear();  // nothing to sample
+    units_.clear(), prim_unit_.clear(), prim_fraction_.clear();  // nothing to sample
     return;
   }
-  // Exactly 1 from the last primitive of non-zero area on: degenerate ones never get a step.
+  // Exactly 1 from the last unit of non-zero area on: degenerate ones never get a step.
   for (double c : sums) cdf_.push_back(c == sum ? 1.0f : float(c / sum));
-  // P(primitive) as the CDF's steps, so that pick() and prim_pmf() agree to the bit.
+  // P(unit) as the CDF's steps, so that pick() and pdf_li() agree to the bit.
   for (size_t i = 0; i < cdf_.size(); ++i) pmf_.push_back(cdf_[i] - (i ? cdf_[i - 1] : 0.0f));
+  for (float p : pmf_) inv_pmf_.push_back(p > 0.0f ? 1.0f / p : 0.0f);
 }
 
 float AreaLight::prim_pmf(uint32_t prim) const {
   const uint32_t i = prim - first_prim_;  // wraps for prim < first_prim_
-  return i < pmf_.size() ? pmf_[i] : 0.0f;
+  return i < prim_unit_.size() ? pmf_[prim_unit_[i]] * prim_fraction_[i] : 0.0f;
 }
 
-void AreaLight::sample_area(uint32_t local, Vec2 u, Vec3& q, Vec3& n) const {
-  const uint32_t id = first_prim_ + local;
-  const PrimitiveSet& prims = world_.primitives();
-  switch (prims.kind(id)) {
-    case PrimKind::kTriangle: {
+void AreaLight::sample_area(const Unit& unit, Vec2 u, Vec3& q, Vec3& n) const {
+  switch (unit.kind) {
+    case UnitKind::kTriangle: {
       // Uniform barycentrics (Shirley 1990 / pbrt's square-root mapping).
-      const Vec3* v = prims.triangle(id);
       const float s = std::sqrt(u.x);
-      const float b1 = 1.0f - s, b2 = u.y * s;
-      q = v[0] * (1.0f - b1 - b2) + v[1] * b1 + v[2] * b2;
-      n = normals_[local];
+      q = unit.o + unit.e1 * (1.0f - s) + unit.e2 * (u.y * s);
+      n = unit.n;
       break;
     }
-    case PrimKind::kQuad: {
-      const QuadData& d = prims.quad(id);
-      q = d.p + d.e1 * u.x + d.e2 * u.y;
-      n = normals_[local];
+    case UnitKind::kParallelogram:
+    case UnitKind::kRectangle:
+      q = unit.o + unit.e1 * u.x + unit.e2 * u.y;
+      n = unit.n;
       break;
-    }
-    case PrimKind::kSphere: {
-      const SphereData& s = prims.sphere(id);
+    case UnitKind::kSphere:
       n = sample_uniform_sphere(u);
-      q = s.center + n * s.radius;
+      q = unit.o + n * unit.e1.x;
       break;
-    }
   }
 }
 
-bool AreaLight::solid_angle_sampled(uint32_t local, Vec3 p, float* pdf) const {
-  const uint32_t id = first_prim_ + local;
-  const PrimitiveSet& prims = world_.primitives();
-  if (prims.kind(id) == PrimKind::kSphere) {
-    const SphereCone cone(p, prims.sphere(id));
+bool AreaLight::solid_angle_sampled(const Unit& unit, Vec3 p, float* pdf) const {
+  if (unit.kind == UnitKind::kSphere) {
+    const SphereCone cone(p, {unit.o, unit.e1.x});
     if (cone.outside) *pdf = cone.pdf();
     return cone.outside;
   }
-  if (!rects_[local]) return false;
-  const SphericalRect rect(p, prims.quad(id));
+  if (unit.kind != UnitKind::kRectangle) return false;
+  const SphericalRect rect(p, {unit.o, unit.e1, unit.e2});
   const bool use =
       rect.solid_angle >= kMinSphericalSolidAngle && rect.solid_angle <= kMaxSphericalSolidAngle;
   if (use) *pdf = float(1.0 / rect.solid_angle);
   return use;
 }
 
-float AreaLight::area_density(uint32_t local, Vec3 p, Vec3 q, Vec3 n) const {
+float AreaLight::area_density(const Unit& unit, Vec3 p, Vec3 q, Vec3 n) {
   const Vec3 d = q - p;
   const float dist2 = dot(d, d);
   const float cos_l = std::fabs(dot(n, d)) / std::sqrt(dist2);
   if (!(cos_l > 0.0f)) return 0.0f;
-  return dist2 / (cos_l * areas_[local]);
+  return dist2 / (cos_l * unit.area);
 }
 
 LightSample AreaLight::sample_li(Vec3 p, Vec2 u) const {
   if (pmf_.empty()) return {};
-  // The primitive by area, then a point of it by its own strategy.
+  // The unit by area, then a point of it by its own strategy.
   const Picked pk = pick(u.x);
-  const uint32_t local = pk.local;
+  const Unit& unit = units_[pk.unit];
   const Vec2 v{pk.u, u.y};
-  const uint32_t id = first_prim_ + local;
-  const PrimitiveSet& prims = world_.primitives();
   LightSample ls;
   Vec3 q, n;
   float pdf = 0;
-  bool sphere_cone = false;
-  if (prims.kind(id) == PrimKind::kSphere) {
-    const SphereCone cone(p, prims.sphere(id));
+  if (unit.kind == UnitKind::kSphere) {
+    const SphereCone cone(p, {unit.o, unit.e1.x});
     if (cone.outside) {
       // A direction uniform in the cone, then the near intersection with the sphere, in the
       // form (d^2 - r^2) / (d cos + sqrt(r^2 - d^2 sin^2)) that does not cancel.
@@ -220,45 +279,50 @@ LightSample AreaLight::sample_li(Vec3 p, Vec2 u) const {
       ls.distance = (cone.dist2 - cone.r2) /
                     (dist * cos_t + std::sqrt(std::fmax(0.0f, cone.r2 - cone.dist2 * sin2_t)));
       pdf = cone.pdf();
-      sphere_cone = true;
+      if (!(pdf > 0.0f) || !std::isfinite(pdf)) return {};
+      ls.li = radiance_;
+      ls.pdf = pmf_[pk.unit] * pdf;
+      return ls;
     }
-  } else if (rects_[local]) {
-    const SphericalRect rect(p, prims.quad(id));
+  } else if (unit.kind == UnitKind::kRectangle) {
+    const SphericalRect rect(p, {unit.o, unit.e1, unit.e2});
     if (rect.solid_angle >= kMinSphericalSolidAngle &&
         rect.solid_angle <= kMaxSphericalSolidAngle) {
       q = rect.sample(v);
-      n = normals_[local];
+      n = unit.n;
       pdf = float(1.0 / rect.solid_angle);
     }
   }
-  if (!sphere_cone) {
-    if (!(pdf > 0.0f)) sample_area(local, v, q, n);
-    const Vec3 d = q - p;
-    ls.distance = length(d);
-    if (!(ls.distance > 0.0f)) return {};
-    ls.wi = d / ls.distance;
-    // Only the emitting side: a one-sided light seen from behind gives nothing.
-    const float cos_l = dot(n, -ls.wi);
-    if (!(two_sided_ ? cos_l != 0.0f : cos_l > 0.0f)) return {};
-    if (!(pdf > 0.0f)) pdf = area_density(local, p, q, n);
-  }
+  if (!(pdf > 0.0f)) sample_area(unit, v, q, n);
+  const Vec3 d = q - p;
+  const float dist2 = dot(d, d);
+  ls.distance = std::sqrt(dist2);
+  if (!(ls.distance > 0.0f)) return {};
+  ls.wi = d * (1.0f / ls.distance);
+  // Only the emitting side: a one-sided light seen from behind gives nothing.
+  const float cos_l = dot(n, -ls.wi);
+  if (!(two_sided_ ? cos_l != 0.0f : cos_l > 0.0f)) return {};
+  // By area: d^2 / (|cos| A_u), from the distance and cosine at hand.
+  if (!(pdf > 0.0f)) pdf = dist2 / (std::fabs(cos_l) * unit.area);
   if (!(pdf > 0.0f) || !std::isfinite(pdf)) return {};
   ls.li = radiance_;
-  ls.pdf = pmf_[local] * pdf;
+  ls.pdf = pmf_[pk.unit] * pdf;
   return ls;
 }
 
 float AreaLight::pdf_li(Vec3 p, Vec3, const LightPoint& hit) const {
-  const float pmf = prim_pmf(hit.prim);
+  const uint32_t i = hit.prim - first_prim_;  // wraps for prim < first_prim_
+  if (!(i < prim_unit_.size())) return 0.0f;
+  const uint32_t k = prim_unit_[i];
+  const float pmf = pmf_[k];
   if (!(pmf > 0.0f)) return 0.0f;
-  const uint32_t local = hit.prim - first_prim_;
+  const Unit& unit = units_[k];
   float pdf = 0;
-  if (world_.primitives().kind(hit.prim) == PrimKind::kSphere &&
-      solid_angle_sampled(local, p, &pdf))
+  if (unit.kind == UnitKind::kSphere && solid_angle_sampled(unit, p, &pdf))
     return pmf * pdf;  // seen from outside: the near cap, always its front
   // Planar primitives and spheres seen from inside: only the emitting side is ever sampled.
   if (!two_sided_ && !(dot(hit.n, p - hit.p) > 0.0f)) return 0.0f;
-  if (!solid_angle_sampled(local, p, &pdf)) pdf = area_density(local, p, hit.p, hit.n);
+  if (!solid_angle_sampled(unit, p, &pdf)) pdf = area_density(unit, p, hit.p, hit.n);
   return pmf * pdf;
 }
 
@@ -270,10 +334,9 @@ LightLeSample AreaLight::sample_le(Vec2 u_pos, Vec2 u_dir, float time) const {
   LightLeSample s;
   if (pmf_.empty()) return s;
   const Picked pk = pick(u_pos.x);
-  const uint32_t local = pk.local;
   const Vec2 v{pk.u, u_pos.y};
   Vec3 q, n;
-  sample_area(local, v, q, n);
+  sample_area(units_[pk.unit], v, q, n);
   // Two-sided: the side by the first coordinate, reused as a fresh uniform number.
   float ux = u_dir.x;
   if (two_sided_) {

@@ -11,7 +11,10 @@
 namespace penumbra {
 
 /// An emissive shape (triangles, parallelograms, spheres) of constant radiance L, emitting from its
-/// front side (the geometric normal's) or from both sides. sample_li picks one primitive in
+/// front side (the geometric normal's) or from both sides. Its primitives are grouped into
+/// sampling units: two consecutive triangles of a mesh that form a parallelogram (a quad as a
+/// modeller triangulates it: they share an edge and the other two vertices are its mirror
+/// images) are one unit, every other primitive is a unit of its own. sample_li picks one unit in
 /// proportion to its area, then samples it by its own strategy:
 ///  - a sphere seen from outside: uniform in the cone it subtends (pbrt-v4 Sphere::Sample; Shirley,
 ///    Wang 1994), density 1 / (2 pi (1 - cos theta_max)); from inside, on the surface or within
@@ -19,10 +22,14 @@ namespace penumbra {
 ///  - a rectangle (a parallelogram with perpendicular edges) whose solid angle is in
 ///    [kMinSphericalSolidAngle, kMaxSphericalSolidAngle]: uniform in solid angle (Urena, Fajardo,
 ///    King 2013, "An Area-Preserving Parametrization for Spherical Rectangles"), density 1 / Omega;
-///  - everything else (triangles, skewed parallelograms, rectangles seen at a tiny or almost
-///    hemispherical solid angle): a uniform point by area, density d^2 / (|cos theta_l| A_i).
-/// pdf_li(p, wi, hit) = P(hit.prim) * that primitive's density, exactly the density of sample_li
-/// in the path-space sense (the point hit is the point that would have been sampled).
+///  - everything else (triangles, pairs of triangles, skewed parallelograms, rectangles seen at a
+///    tiny or almost hemispherical solid angle): a uniform point by area, density
+///    d^2 / (|cos theta_l| A_u) for a unit of area A_u. A pair is sampled as its parallelogram,
+///    linearly in both numbers: stratified numbers stay stratified over the whole quad (two
+///    triangles each warped by a square root would not), it costs no square root, and the density
+///    is the same uniform density by area as the two triangles sampled apart.
+/// pdf_li(p, wi, hit) = P(unit of hit.prim) * that unit's density, exactly the density of
+/// sample_li in the path-space sense (the point hit is the point that would have been sampled).
 class AreaLight final : public Light {
  public:
   /// Below this solid angle (sr) a rectangle is sampled by area: its area density is then almost
@@ -49,40 +56,63 @@ class AreaLight final : public Light {
   bool two_sided() const { return two_sided_; }
   /// Total emitting area.
   float area() const { return area_; }
-  /// Probability that a sample picks world primitive `prim` (zero outside this light).
+  /// Probability that a sample lands on world primitive `prim` (zero outside this light).
   float prim_pmf(uint32_t prim) const;
+  /// Number of sampling units (primitives, with pairs of triangles that form a parallelogram
+  /// counted once).
+  size_t unit_count() const { return units_.size(); }
 
  private:
-  /// The primitive chosen by a number u and u's remainder, uniform in [0, 1).
+  enum class UnitKind : uint8_t {
+    kTriangle,       ///< o, e1, e2 as the triangle's vertex 0 and its two edges from it
+    kParallelogram,  ///< o + s e1 + t e2, s, t in [0, 1]: a quad or a pair of triangles
+    kRectangle,      ///< a quad with perpendicular edges: spherical-rectangle candidate
+    kSphere,
+  };
+  /// One sampling unit: its geometry (time 0: emitters never move), area and first primitive.
+  struct Unit {
+    Vec3 o, e1, e2;
+    Vec3 n;  ///< unit front normal (planar units)
+    float area = 0;
+    uint32_t local = 0;  ///< its (first) primitive: prim id - first_prim_
+    UnitKind kind = UnitKind::kTriangle;
+  };
+  /// The unit chosen by a number u and u's remainder, uniform in [0, 1).
   struct Picked {
-    uint32_t local;  ///< prim id - first_prim_
+    uint32_t unit;
     float u;
   };
-  /// Inverts the CDF, then stretches the step that u fell in back to [0, 1): the map from
-  /// [0, 1)^2 to the surface stays continuous and area-preserving, so stratified u stay
-  /// stratified. Inline: an out-of-line call, with its remainder returned through memory, cost
-  /// 2 % of a Cornell box render.
+  /// Inverts the CDF (a binary search without branches: the step that u falls in is as
+  /// unpredictable as u), then stretches that step back to [0, 1): the map from [0, 1)^2 to the
+  /// surface stays continuous and area-preserving, so stratified u stay stratified. Inline: an
+  /// out-of-line call, with its remainder returned through memory, cost 2 % of a Cornell box
+  /// render.
   Picked pick(float u) const {
-    const size_t n = cdf_.size();
-    const size_t i =
-        std::min(size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin()), n - 1);
+    const float* base = cdf_.data();
+    size_t len = cdf_.size();
+    while (len > 1) {
+      const size_t half = len / 2;
+      base = base[half - 1] <= u ? base + half : base;
+      len -= half;
+    }
+    const size_t i = std::min(size_t(base - cdf_.data()) + (*base <= u), cdf_.size() - 1);
     const float lo = i ? cdf_[i - 1] : 0.0f;
-    return {uint32_t(i), std::clamp((u - lo) / pmf_[i], 0.0f, 0x1.fffffep-1f)};
+    return {uint32_t(i), std::clamp((u - lo) * inv_pmf_[i], 0.0f, 0x1.fffffep-1f)};
   }
-  /// A uniform point q on primitive `local` by area, with its unit front normal n.
-  void sample_area(uint32_t local, Vec2 u, Vec3& q, Vec3& n) const;
-  /// True when the receiver at p sees primitive `local` by its solid-angle strategy.
-  bool solid_angle_sampled(uint32_t local, Vec3 p, float* solid_angle_pdf) const;
-  /// Density d^2 / (|cos| A_i) of area sampling primitive `local` at point q (normal n) from p.
-  float area_density(uint32_t local, Vec3 p, Vec3 q, Vec3 n) const;
+  /// A uniform point q on unit `unit` by area, with its unit front normal n.
+  void sample_area(const Unit& unit, Vec2 u, Vec3& q, Vec3& n) const;
+  /// True when the receiver at p sees the unit by its solid-angle strategy.
+  bool solid_angle_sampled(const Unit& unit, Vec3 p, float* solid_angle_pdf) const;
+  /// Density d^2 / (|cos| A_u) of area sampling the unit at point q (normal n) from p.
+  static float area_density(const Unit& unit, Vec3 p, Vec3 q, Vec3 n);
 
-  const World& world_;
   uint32_t first_prim_ = 0;
-  std::vector<float> cdf_;      ///< cumulative area fractions, per primitive of the emitter
-  std::vector<float> pmf_;      ///< P(primitive) = difference of cdf_ (zero when degenerate)
-  std::vector<float> areas_;    ///< area of each primitive
-  std::vector<uint8_t> rects_;  ///< 1 for a rectangle (spherical-rectangle candidate)
-  std::vector<Vec3> normals_;   ///< unit front normal of each planar primitive (computed once)
+  std::vector<Unit> units_;
+  std::vector<float> cdf_;             ///< cumulative area fractions, per unit
+  std::vector<float> pmf_;             ///< P(unit) = difference of cdf_ (zero when degenerate)
+  std::vector<float> inv_pmf_;         ///< 1 / pmf_ (zero for a degenerate unit, never picked)
+  std::vector<uint32_t> prim_unit_;    ///< the unit of each primitive of the emitter
+  std::vector<float> prim_fraction_;   ///< the primitive's share of its unit's area
   Rgb radiance_;
   bool two_sided_;
   float area_ = 0;
