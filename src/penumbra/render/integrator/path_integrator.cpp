@@ -80,10 +80,13 @@ Rgb PathIntegrator::sample_light(const SurfaceInteraction& si, const Material& m
   // a dimension less per vertex, and the pair stays stratified over lights and points together.
   // The values are drawn whether or not they are used, so that every vertex takes the same
   // dimensions.
-  Vec2 u = sampler.get_2d();
-  const SampledLight picked = light_sampler_.sample(u.x, &u.x);
+  const Vec2 u = sampler.get_2d();
+  // The remainder in a variable of its own: written through a pointer into u.x, then read back
+  // with u.y as one 8-byte load, it could not be forwarded from the two stores (a stall).
+  float u_rest = u.x;
+  const SampledLight picked = light_sampler_.sample(u.x, &u_rest);
   if (!picked.light || !(picked.pmf > 0.0f)) return {};
-  const LightSample ls = picked.light->sample_li(si.p, u);
+  const LightSample ls = picked.light->sample_li(si.p, {u_rest, u.y});
   if (ls.li.is_black() || !(ls.pdf > 0.0f)) return {};
   const Vec3 wi = si.to_local(ls.wi);
   const Rgb f = m.eval(wo, wi) * std::fabs(dot(ls.wi, si.ns));
