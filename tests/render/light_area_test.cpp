@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
+#include "chi_square.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/render/light/area_light.h"
 #include "penumbra/render/light/light_sampler.h"
 #include "penumbra/render/sampling.h"
-#include "chi_square.h"
 #include "render_helpers.h"
 
 namespace penumbra {

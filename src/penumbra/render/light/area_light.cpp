@@ -112,7 +112,10 @@ bool parallelogram_pair(const Vec3* a, const Vec3* b, Vec3 na, Vec3 nb, Vec3& o,
     bool found = false;
     for (int j = 0; j < 3; ++j)
       if (!in_b[j] && a[i] == b[j]) in_b[j] = found = true;
-    if (found) ++shared; else x = i;
+    if (found)
+      ++shared;
+    else
+      x = i;
   }
   if (shared != 2) return false;
   for (int j = 0; j < 3; ++j)
@@ -160,8 +163,8 @@ AreaLight::AreaLight(const World& world, const Emitter& e)
         Vec3 o, e1, e2;
         if (i + 1 < count && prims.kind(id + 1) == PrimKind::kTriangle && u.area > 0.0f &&
             prim_area[i + 1] > 0.0f &&
-            parallelogram_pair(v, prims.triangle(id + 1), prim_normal[i], prim_normal[i + 1], o,
-                               e1, e2)) {
+            parallelogram_pair(v, prims.triangle(id + 1), prim_normal[i], prim_normal[i + 1], o, e1,
+                               e2)) {
           u.kind = UnitKind::kParallelogram;
           u.o = o, u.e1 = e1, u.e2 = e2;
           u.area = prim_area[i] + prim_area[i + 1];

@@ -108,11 +108,11 @@ class AreaLight final : public Light {
 
   uint32_t first_prim_ = 0;
   std::vector<Unit> units_;
-  std::vector<float> cdf_;             ///< cumulative area fractions, per unit
-  std::vector<float> pmf_;             ///< P(unit) = difference of cdf_ (zero when degenerate)
-  std::vector<float> inv_pmf_;         ///< 1 / pmf_ (zero for a degenerate unit, never picked)
-  std::vector<uint32_t> prim_unit_;    ///< the unit of each primitive of the emitter
-  std::vector<float> prim_fraction_;   ///< the primitive's share of its unit's area
+  std::vector<float> cdf_;            ///< cumulative area fractions, per unit
+  std::vector<float> pmf_;            ///< P(unit) = difference of cdf_ (zero when degenerate)
+  std::vector<float> inv_pmf_;        ///< 1 / pmf_ (zero for a degenerate unit, never picked)
+  std::vector<uint32_t> prim_unit_;   ///< the unit of each primitive of the emitter
+  std::vector<float> prim_fraction_;  ///< the primitive's share of its unit's area
   Rgb radiance_;
   bool two_sided_;
   float area_ = 0;

@@ -16,7 +16,9 @@ constexpr uint32_t reverse_bits(uint32_t x) {
 }
 
 /// First dimension of the Sobol' sequence (the base-2 van der Corput sequence) as 32-bit fraction.
-constexpr uint32_t sobol_dim0(uint32_t i) { return reverse_bits(i); }
+constexpr uint32_t sobol_dim0(uint32_t i) {
+  return reverse_bits(i);
+}
 
 /// Second dimension of the Sobol' sequence as a 32-bit fraction; with `sobol_dim0` it forms the
 /// (0,2)-sequence in base 2 (Kollig, Keller 2002, "Efficient Multidimensional Sampling"): every
@@ -33,7 +35,9 @@ constexpr uint32_t sobol_dim1(uint32_t i) {
 /// 31 - p) when C(k, p) is odd, which by Lucas' theorem is when p's bits are a subset of k's. So
 /// digit p is the XOR of the bits k of i over the supersets k of p: the superset-XOR (binary
 /// Moebius) transform of i over the five bits of a position, one masked shift per bit.
-constexpr uint32_t sobol_dim1_reversed(uint32_t i) {
+/// Also lane-wise on GCC vectors of uint32_t (the Sobol' sampler's batch).
+template <class U>
+constexpr U sobol_dim1_reversed(U i) {
   i ^= (i >> 1) & 0x55555555u;
   i ^= (i >> 2) & 0x33333333u;
   i ^= (i >> 4) & 0x0f0f0f0fu;
@@ -44,8 +48,10 @@ constexpr uint32_t sobol_dim1_reversed(uint32_t i) {
 
 /// The hash-based nested uniform (Owen) scramble of a 32-bit fraction (Burley 2020, "Practical
 /// Hash-based Owen Scrambling", JCGT 9(4)): the Laine-Karras permutation applied to the
-/// bit-reversed value, so each bit is flipped depending only on the bits above it.
-constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
+/// bit-reversed value, so each bit is flipped depending only on the bits above it. The
+/// permutation is also lane-wise on GCC vectors of uint32_t.
+template <class U>
+constexpr U laine_karras_permutation(U x, U seed) {
   x += seed;
   x ^= x * 0x6c50b47cu;
   x ^= x * 0xb82f1e52u;
@@ -96,6 +102,8 @@ constexpr uint32_t permutation_element(uint32_t i, uint32_t n, uint32_t seed) {
 }
 
 /// A 32-bit fraction as a float in [0, 1) (rounded down so that 1 is never returned).
-constexpr float fraction_to_float(uint32_t v) { return float(v >> 8) * 0x1p-24f; }
+constexpr float fraction_to_float(uint32_t v) {
+  return float(v >> 8) * 0x1p-24f;
+}
 
 }  // namespace penumbra

@@ -23,22 +23,13 @@ using F32x16 = float __attribute__((vector_size(64)));
 /// matrix with ones on the anti-diagonal), then the bytes of every 32-bit lane by a shuffle. Two
 /// instructions instead of the ten shifts and masks that the portable version vectorises to.
 inline U32x16 reverse_bits16(U32x16 x) {
-  const __m512i bits = _mm512_gf2p8affine_epi64_epi8(__m512i(x),
-                                                     _mm512_set1_epi64(0x8040201008040201ll), 0);
+  const __m512i bits =
+      _mm512_gf2p8affine_epi64_epi8(__m512i(x), _mm512_set1_epi64(0x8040201008040201ll), 0);
   // Per 128-bit lane, bytes 3 2 1 0, 7 6 5 4, ...; as 32-bit words, little-endian.
   const __m512i bswap = _mm512_set4_epi32(0x0c0d0e0f, 0x08090a0b, 0x04050607, 0x00010203);
   return U32x16(_mm512_shuffle_epi8(bits, bswap));
 }
 
-/// laine_karras_permutation of 16 lanes.
-inline U32x16 laine_karras16(U32x16 x, U32x16 seed) {
-  x += seed;
-  x ^= x * 0x6c50b47cu;
-  x ^= x * 0xb82f1e52u;
-  x ^= x * 0xc7afe638u;
-  x ^= x * 0x8d22f6e6u;
-  return x;
-}
 #endif
 }  // namespace
 
@@ -71,9 +62,9 @@ void SobolSampler::fill_batch() {
   // The hashes of the batch's dimensions and of the one after (the last slot's y needs it).
   uint64_t h[kBatch + 1];
   for (uint32_t k = 0; k <= kBatch; ++k) h[k] = mix64(pixel_hash_ + uint64_t(base_ + k) * kGolden);
-  // Per slot the pixel's spp points in a per-dimension random order, so dimensions do not
-  // correlate; the set itself (the first spp points, a (0,m,2)-net when spp = 2^m) is the same in
-  // every order.
+    // Per slot the pixel's spp points in a per-dimension random order, so dimensions do not
+    // correlate; the set itself (the first spp points, a (0,m,2)-net when spp = 2^m) is the same in
+    // every order.
 #ifdef PENUMBRA_SOBOL_GFNI
   static_assert(kBatch == 16, "one 512-bit register of 32-bit lanes per batch");
   // The portable loops below, 16 lanes at once, with bit reversals by GFNI: the same values.
@@ -85,19 +76,13 @@ void SobolSampler::fill_batch() {
       seed_next[k] = uint32_t(h[k + 1]);
     }
     if (log2_spp_ > 0) {
-      idx = reverse_bits16(laine_karras16(U32x16{} + reversed_index_, seed_lo)) >>
+      idx = reverse_bits16(laine_karras_permutation(U32x16{} + reversed_index_, seed_lo)) >>
             uint32_t(32 - log2_spp_);
     } else {
       for (uint32_t k = 0; k < kBatch; ++k) idx[k] = shuffled(seed_lo[k]);
     }
-    const U32x16 vx = reverse_bits16(laine_karras16(idx, seed_hi));
-    U32x16 d1 = idx;  // sobol_dim1_reversed, lane-wise
-    d1 ^= (d1 >> 1) & 0x55555555u;
-    d1 ^= (d1 >> 2) & 0x33333333u;
-    d1 ^= (d1 >> 4) & 0x0f0f0f0fu;
-    d1 ^= (d1 >> 8) & 0x00ff00ffu;
-    d1 ^= d1 >> 16;
-    const U32x16 vy = reverse_bits16(laine_karras16(d1, seed_next));
+    const U32x16 vx = reverse_bits16(laine_karras_permutation(idx, seed_hi));
+    const U32x16 vy = reverse_bits16(laine_karras_permutation(sobol_dim1_reversed(idx), seed_next));
     const F32x16 fx = __builtin_convertvector(vx >> 8, F32x16) * 0x1p-24f;
     const F32x16 fy = __builtin_convertvector(vy >> 8, F32x16) * 0x1p-24f;
     __builtin_memcpy(x_, &fx, sizeof x_);
