@@ -96,10 +96,6 @@ struct SphereCone {
   bool outside = false;
 };
 
-}  // namespace
-
-namespace {
-
 /// Whether triangles a and b (vertices in their winding order, unit front normals na, nb) form a
 /// parallelogram: two shared vertices s0, s1 and the others x (of a) and y (of b) mirror images
 /// through the shared edge's midpoint, x + y = s0 + s1, within rounding, with the same front
@@ -153,7 +149,6 @@ AreaLight::AreaLight(const World& world, const Emitter& e)
   for (uint32_t i = 0; i < count; ++i) {
     const uint32_t id = first_prim_ + i;
     Unit u;
-    u.local = i;
     u.area = prim_area[i];
     u.n = prim_normal[i];
     switch (prims.kind(id)) {
@@ -207,6 +202,7 @@ AreaLight::AreaLight(const World& world, const Emitter& e)
   // P(unit) as the CDF's steps, so that pick() and pdf_li() agree to the bit.
   for (size_t i = 0; i < cdf_.size(); ++i) pmf_.push_back(cdf_[i] - (i ? cdf_[i - 1] : 0.0f));
   for (float p : pmf_) inv_pmf_.push_back(p > 0.0f ? 1.0f / p : 0.0f);
+  for (size_t i = 0; i < cdf_.size(); ++i) cdf_lo_.push_back(i ? cdf_[i - 1] : 0.0f);
 }
 
 float AreaLight::prim_pmf(uint32_t prim) const {

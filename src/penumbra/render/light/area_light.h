@@ -69,12 +69,11 @@ class AreaLight final : public Light {
     kRectangle,      ///< a quad with perpendicular edges: spherical-rectangle candidate
     kSphere,
   };
-  /// One sampling unit: its geometry (time 0: emitters never move), area and first primitive.
+  /// One sampling unit: its geometry (time 0: emitters never move) and area.
   struct Unit {
     Vec3 o, e1, e2;
     Vec3 n;  ///< unit front normal (planar units)
     float area = 0;
-    uint32_t local = 0;  ///< its (first) primitive: prim id - first_prim_
     UnitKind kind = UnitKind::kTriangle;
   };
   /// The unit chosen by a number u and u's remainder, uniform in [0, 1).
@@ -92,12 +91,11 @@ class AreaLight final : public Light {
     size_t len = cdf_.size();
     while (len > 1) {
       const size_t half = len / 2;
-      base = base[half - 1] <= u ? base + half : base;
+      base += size_t(base[half - 1] <= u) * half;  // a flag times a step: no branch
       len -= half;
     }
     const size_t i = std::min(size_t(base - cdf_.data()) + (*base <= u), cdf_.size() - 1);
-    const float lo = i ? cdf_[i - 1] : 0.0f;
-    return {uint32_t(i), std::clamp((u - lo) * inv_pmf_[i], 0.0f, 0x1.fffffep-1f)};
+    return {uint32_t(i), std::clamp((u - cdf_lo_[i]) * inv_pmf_[i], 0.0f, 0x1.fffffep-1f)};
   }
   /// A uniform point q on unit `unit` by area, with its unit front normal n.
   void sample_area(const Unit& unit, Vec2 u, Vec3& q, Vec3& n) const;
@@ -111,6 +109,7 @@ class AreaLight final : public Light {
   std::vector<float> cdf_;            ///< cumulative area fractions, per unit
   std::vector<float> pmf_;            ///< P(unit) = difference of cdf_ (zero when degenerate)
   std::vector<float> inv_pmf_;        ///< 1 / pmf_ (zero for a degenerate unit, never picked)
+  std::vector<float> cdf_lo_;         ///< where each unit's step starts: cdf_[i - 1], or 0
   std::vector<uint32_t> prim_unit_;   ///< the unit of each primitive of the emitter
   std::vector<float> prim_fraction_;  ///< the primitive's share of its unit's area
   Rgb radiance_;
