@@ -294,7 +294,10 @@ TEST(AreaLight, IrradianceMatchesClosedForms) {
       {"type": "quad", "origin": [-1, -0.5, 0.5], "edge1": [0, 1.5, 0], "edge2": [2, 0, 0],
        "material": "b", "emission": 2},
       {"type": "mesh", "material": "b", "emission": 2,
-       "positions": [[0, 0, 1], [1, 0, 1.5], [0.2, 1.5, 1]], "indices": [[0, 2, 1]]})");
+       "positions": [[0, 0, 1], [1, 0, 1.5], [0.2, 1.5, 1]], "indices": [[0, 2, 1]]},
+      {"type": "mesh", "material": "b", "emission": 2,
+       "positions": [[-0.5, -0.4, 0.8], [0.9, -0.2, 1.1], [1.3, 1.0, 1.1], [-0.1, 0.8, 0.8]],
+       "indices": [[0, 2, 1], [0, 3, 2]]})");
   double mean, sigma;
   // A sphere of radius r at distance d, facing it: E = pi L (r / d)^2.
   estimate_irradiance(tw.light(0), {0, 0, 0}, {0, 0, 1}, 12, mean, sigma);
@@ -310,6 +313,17 @@ TEST(AreaLight, IrradianceMatchesClosedForms) {
   estimate_irradiance(tw.light(2), {0.2f, 0.3f, 0}, n, 14, mean, sigma);
   EXPECT_NEAR(
       mean, polygon_irradiance({0.2f, 0.3f, 0}, n, {{0, 0, 1}, {1, 0, 1.5f}, {0.2f, 1.5f, 1}}, 2.0),
+      4.0 * sigma);
+  // A tilted, sheared quad as two triangles, sampled as one parallelogram unit, against the
+  // closed form of its outline (wound so that its front faces the receiver).
+  ASSERT_EQ(static_cast<const AreaLight&>(tw.light(3)).unit_count(), 1u);
+  estimate_irradiance(tw.light(3), {0.1f, 0.2f, 0}, n, 15, mean, sigma);
+  EXPECT_NEAR(
+      mean,
+      polygon_irradiance(
+          {0.1f, 0.2f, 0}, n,
+          {{-0.5f, -0.4f, 0.8f}, {-0.1f, 0.8f, 0.8f}, {1.3f, 1.0f, 1.1f}, {0.9f, -0.2f, 1.1f}},
+          2.0),
       4.0 * sigma);
 }
 

@@ -248,9 +248,12 @@ bool AreaLight::solid_angle_sampled(const Unit& unit, Vec3 p, float* pdf) const 
 float AreaLight::area_density(const Unit& unit, Vec3 p, Vec3 q, Vec3 n) {
   const Vec3 d = q - p;
   const float dist2 = dot(d, d);
-  const float cos_l = std::fabs(dot(n, d)) / std::sqrt(dist2);
-  if (!(cos_l > 0.0f)) return 0.0f;
-  return dist2 / (cos_l * unit.area);
+  return area_density(unit, dist2, dot(n, d) / std::sqrt(dist2));
+}
+
+float AreaLight::area_density(const Unit& unit, float dist2, float cos_l) {
+  const float c = std::fabs(cos_l);
+  return c > 0.0f ? dist2 / (c * unit.area) : 0.0f;
 }
 
 LightSample AreaLight::sample_li(Vec3 p, Vec2 u) const {
@@ -301,8 +304,7 @@ LightSample AreaLight::sample_li(Vec3 p, Vec2 u) const {
   // Only the emitting side: a one-sided light seen from behind gives nothing.
   const float cos_l = dot(n, -ls.wi);
   if (!(two_sided_ ? cos_l != 0.0f : cos_l > 0.0f)) return {};
-  // By area: d^2 / (|cos| A_u), from the distance and cosine at hand.
-  if (!(pdf > 0.0f)) pdf = dist2 / (std::fabs(cos_l) * unit.area);
+  if (!(pdf > 0.0f)) pdf = area_density(unit, dist2, cos_l);  // the distance and cosine at hand
   if (!(pdf > 0.0f) || !std::isfinite(pdf)) return {};
   ls.li = radiance_;
   ls.pdf = pmf_[pk.unit] * pdf;

@@ -103,6 +103,8 @@ class AreaLight final : public Light {
   bool solid_angle_sampled(const Unit& unit, Vec3 p, float* solid_angle_pdf) const;
   /// Density d^2 / (|cos| A_u) of area sampling the unit at point q (normal n) from p.
   static float area_density(const Unit& unit, Vec3 p, Vec3 q, Vec3 n);
+  /// The same from the squared distance and the cosine at the light (zero when it is 0).
+  static float area_density(const Unit& unit, float dist2, float cos_l);
 
   uint32_t first_prim_ = 0;
   std::vector<Unit> units_;
