@@ -56,7 +56,10 @@ const Registry<Factory>& registry() {
        "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
        "trav=2, build=binned|median|sweep, collapse=sah|greedy, nodes=full|compressed (8-wide: "
        "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
-       "as extra references for large triangles, F in [0, 4])",
+       "as extra references for large triangles, F in [0, 4]), spatial=1 (SBVH spatial splits: "
+       "up to F x the triangles as extra references, F in [0, 4], binned builds of static "
+       "triangles; 0 turns them off), alpha=0.001 (tried where the object split's children "
+       "overlap by more than this share of the root's area)",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
       {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},
@@ -67,6 +70,8 @@ const Registry<Factory>& registry() {
       {"bvh:collapse=greedy",
        "bvh collapsed from the binary tree greedily (largest-area child opened first)",
        create_bvh},
+      {"bvh:spatial=0", "bvh without spatial splits (object splits only, one reference per "
+       "triangle)", create_bvh},
       {"bvh:presplit=0.5",
        "bvh over pre-split large triangles: up to 50 % more references, split at grid planes",
        create_bvh},

@@ -188,6 +188,15 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
                             params.name(), collapse));
   sah_collapse_ = collapse == "sah";
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
+  // Spatial splits are on by default for binned builds (budget 1: at most twice the references).
+  const bool binned = params_.method == BvhSplitMethod::kBinned;
+  params_.spatial_budget = float(params.get_real("spatial", binned ? 1.0 : 0.0, 0.0, 4.0));
+  if (!binned && params_.spatial_budget > 0.0f)
+    throw Error(fmt::format("{}: parameter 'spatial' applies only to build=binned", params.name()));
+  if (params.has("alpha") && !(params_.spatial_budget > 0.0f))
+    throw Error(
+        fmt::format("{}: parameter 'alpha' needs spatial splits (spatial > 0)", params.name()));
+  params_.spatial_alpha = float(params.get_real("alpha", params_.spatial_alpha, 0.0, 1.0));
   params.check_all_used();
   name_ = params.to_string();
 }
@@ -200,10 +209,14 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   // Triangle leaves are tested four at a time (TriangleBlocks): let the SAH count blocks.
   BvhBuildParams params = params_;
   if (prims.all_triangles()) params.block_shift = 2;
-  PrimRefs refs = make_prim_refs(prims);
+  // Spatial splits clip triangles, so only sets of static triangles get them; their room is
+  // reserved with the references (growing the array would copy it).
+  if (!prims.all_triangles()) params.spatial_budget = 0.0f;
+  PrimRefs refs =
+      make_prim_refs(prims, size_t(double(params.spatial_budget) * double(prims.size())) + 1);
   const bool presplit = presplit_ > 0 && prims.all_triangles();
   if (presplit) presplit_refs(prims, refs, presplit_);
-  BinaryBvh tree = build_binary_bvh(std::move(refs), params, false);
+  BinaryBvh tree = build_binary_bvh(std::move(refs), params, false, &prims);
   WideNodeArray<W> full;
   std::optional<SahCollapse> plan;
   if (sah_collapse_ && !tree.nodes.empty() && !tree.nodes[0].is_leaf())
@@ -221,6 +234,11 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   }
   full.shrink_to_fit();
   if (presplit) dedupe_leaves<W>(full, tree.refs);
+  // The references in leaves (spatial splits leave unused slots in tree.refs).
+  size_t leaf_refs = 0;
+  for (const WideNode<W>& n : full)
+    for (int i = 0; i < W; ++i) leaf_refs += n.count[i];
+
   const double sah_cost = wide_sah_cost(full, params.traversal_cost, params.block_shift);
   leaf_ = LeafPrims{};
   blocks_.resize(0);
@@ -244,7 +262,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   stats_.nodes = nodes_.size() + collapser.leaves();
   stats_.leaves = collapser.leaves();
   stats_.max_depth = collapser.max_depth();
-  stats_.prim_refs = tree.refs.size();
+  stats_.prim_refs = leaf_refs;
   stats_.bytes = nodes_.capacity() * sizeof(Node) + leaf_.bytes() + blocks_.bytes();
   stats_.extra = {{"sah_cost", sah_cost}};
   stats_.build_ms = timer.elapsed_ms();

@@ -9,20 +9,36 @@
 #include "penumbra/accel/build/bvh_median.h"
 #include "penumbra/accel/build/bvh_split.h"
 #include "penumbra/accel/build/bvh_sweep.h"
+#include "penumbra/accel/build/kd_clip.h"
+#include "penumbra/accel/build/spatial_split.h"
 #include "penumbra/core/error.h"
 
 namespace penumbra {
 
 namespace {
 
+/// Spatial splits, tuned on cylinder_engine and the terrain (docs/accel.md, "Spatial splits"):
+/// a node's spatial split is estimated from at most this many of its references;
+constexpr size_t kSpatialSamples = 4096;
+/// it is made only when the estimate is below this fraction of the object split's cost (the
+/// sample's boxes are a little smaller than the whole set's, so near ties are mostly false) and
+/// the cost over all references confirms it;
+constexpr float kSpatialMargin = 0.97f;
+/// and the children get room for more references only when the estimate was within this factor
+/// of the object split's cost (a subtree far from splitting spatially stays compact in memory).
+constexpr float kSpatialRoom = 1.25f;
+
 /// The binned SAH strategy: Wald 2007, with the object median where no bin boundary separates
-/// the references or the tree is too deep.
+/// the references or the tree is too deep; with `prims`, also spatial splits (spatial_split.h).
 struct BinnedSplitter {
   const BvhBuildParams& p;
   PrimRef* refs;
+  const PrimitiveSet* prims = nullptr;  ///< set when spatial splits are on
+  float min_overlap = 0.0f;             ///< alpha times the root's surface area
 
-  NodeSplit operator()(uint32_t b, uint32_t e, const Bounds3& box, const Bounds3& centroids,
-                       int depth) const {
+  /// The split of the node over [b, e), whose references may grow up to `cap`.
+  NodeSplit operator()(uint32_t b, uint32_t e, uint32_t cap, const Bounds3& box,
+                       const Bounds3& centroids, int depth) const {
     const uint32_t n = e - b;
     // A split costs at least the traversal step, so a leaf that costs no more than that is
     // chosen by the SAH test below whatever the split: no need to bin it (on a million
@@ -34,11 +50,52 @@ struct BinnedSplitter {
     BinMapping map(centroids, std::min(p.bins, std::max(4, int(n))));
     if (depth < kMaxSahDepth)
       split = find_binned_split({refs + b, n}, map, n >= p.parallel_min, p.block_shift);
+    // A spatial split where the object split's children overlap (or none separates them) and
+    // the node has room for more references.
+    SpatialSplit spatial;
+    bool room = false;
+    if (prims && cap > e && depth < kMaxSahDepth &&
+        (split.axis < 0 || intersect_boxes(split.left, split.right).surface_area() > min_overlap)) {
+      spatial = find_spatial_split({refs + b, n}, box, p.bins, kSpatialSamples, p.block_shift);
+      room = spatial.axis >= 0 && (split.axis < 0 || spatial.cost < kSpatialRoom * split.cost);
+      // The sample's estimate, when clearly better, is checked against all references before
+      // the split is made.
+      if (spatial.axis >= 0 && split.axis >= 0 &&
+          !(spatial.cost < kSpatialMargin * split.cost &&
+            spatial_split_cost({refs + b, n}, spatial, p.block_shift) < split.cost))
+        spatial.axis = -1;
+    }
+    const bool any = split.axis >= 0 || spatial.axis >= 0;
+    const float cost = spatial.axis >= 0 ? spatial.cost : split.cost;
     if (n <= uint32_t(p.max_leaf) &&
-        (split.axis < 0 || sah_prefers_leaf(n, box, split.cost, p.traversal_cost, p.block_shift)))
+        (!any || sah_prefers_leaf(n, box, cost, p.traversal_cost, p.block_shift)))
       return NodeSplit::make_leaf();
-    if (split.axis < 0) return object_median_split({refs + b, n}, b, centroids);
+    if (spatial.axis >= 0) {
+      SpatialSides sides;
+      apply_spatial_split(*prims, {refs + b, n}, spatial, sides);
+      const size_t nl = sides.left.size(), nr = sides.right.size();
+      // Unsplitting and empty parts may leave one side empty; the node's capacity bounds the
+      // growth. Otherwise the object split below.
+      const float made = sides.left_box.surface_area() * sah_tests(uint32_t(nl), p.block_shift) +
+                         sides.right_box.surface_area() * sah_tests(uint32_t(nr), p.block_shift);
+      if (nl > 0 && nr > 0 && nl + nr <= size_t(cap - b) && (split.axis < 0 || made < split.cost)) {
+        std::copy(sides.left.begin(), sides.left.end(), refs + b);
+        std::copy(sides.right.begin(), sides.right.end(), refs + b + nl);
+        NodeSplit s;
+        s.mid = b + uint32_t(nl), s.end = b + uint32_t(nl + nr);
+        s.left = sides.left_box, s.right = sides.right_box;
+        s.left_centroids = sides.left_centroids, s.right_centroids = sides.right_centroids;
+        s.room = true;
+        return s;
+      }
+    }
+    if (split.axis < 0) {
+      NodeSplit s = object_median_split({refs + b, n}, b, centroids);
+      s.room = room;
+      return s;
+    }
     NodeSplit s;
+    s.room = room;
     s.mid = b + uint32_t(
                     partition_refs({refs + b, n}, map, split, s.left_centroids, s.right_centroids));
     s.left = split.left, s.right = split.right;
@@ -55,8 +112,10 @@ struct BinnedSplitter {
 template <class Split>
 class Builder {
  public:
-  Builder(const BvhBuildParams& p, Split& split, BvhNode* scratch)
-      : p_(p), split_(split), nodes_(scratch) {}
+  /// `room_area`: a subtree whose box has no more surface area than this never tries a spatial
+  /// split, so it gets no room for more references (+infinity when spatial splits are off).
+  Builder(const BvhBuildParams& p, Split& split, BvhNode* scratch, PrimRef* refs, float room_area)
+      : p_(p), split_(split), nodes_(scratch), refs_(refs), room_area_(room_area) {}
 
   /// Leaves and depth of a finished subtree.
   struct Result {
@@ -64,25 +123,43 @@ class Builder {
   };
 
   /// Builds the subtree over refs [b, e) into node `node`, with descendants from slot `free`.
-  Result build(uint32_t node, uint32_t b, uint32_t e, uint32_t free, const Bounds3& box,
-               const Bounds3& centroids, int depth) {
+  /// The subtree may grow its references (spatial splits) up to `cap` (>= e) and owns the
+  /// 2 (cap - b) - 2 node slots from `free`.
+  Result build(uint32_t node, uint32_t b, uint32_t e, uint32_t cap, uint32_t free,
+               const Bounds3& box, const Bounds3& centroids, int depth) {
     const uint32_t n = e - b;
     BvhNode& out = nodes_[node];
     out.set_bounds(box);
     if (n == 1) return make_leaf(out, b, n, depth);
-    const NodeSplit s = split_(b, e, box, centroids, depth);
+    const NodeSplit s = split_(b, e, cap, box, centroids, depth);
     if (s.leaf) return make_leaf(out, b, n, depth);
 
+    // The room left for more references goes to the children that may still split spatially,
+    // shared in proportion to their sizes (as Embree's spatial-split builder does); the right
+    // one's references move up. A child too small to split spatially gets none: its subtree
+    // stays compact, and the memory it would have spread over is never touched.
+    const uint32_t mid = s.mid, end = s.end ? s.end : e;
+    const uint32_t right_count = end - mid;
+    uint32_t left_cap = mid, right_cap = mid + right_count;
+    if (cap > end) {
+      const bool left_room = s.room && s.left.surface_area() > room_area_;
+      const bool right_room = s.room && s.right.surface_area() > room_area_;
+      const uint64_t slack = cap - end, nl = mid - b;
+      if (left_room) left_cap += uint32_t(right_room ? slack * nl / (nl + right_count) : slack);
+      right_cap = right_room ? cap : left_cap + right_count;
+      if (left_cap != mid)
+        std::copy_backward(refs_ + mid, refs_ + end, refs_ + left_cap + right_count);
+    }
     // Children at (free, free + 1); their descendants in disjoint regions after them.
     out.index = free, out.count = 0;
-    const uint32_t mid = s.mid;
-    const uint32_t left_free = free + 2, right_free = left_free + 2 * (mid - b) - 2;
+    const uint32_t left_free = free + 2, right_free = left_free + 2 * (left_cap - b) - 2;
     Result l, r;
     auto build_left = [&] {
-      l = build(free, b, mid, left_free, s.left, s.left_centroids, depth + 1);
+      l = build(free, b, mid, left_cap, left_free, s.left, s.left_centroids, depth + 1);
     };
     auto build_right = [&] {
-      r = build(free + 1, mid, e, right_free, s.right, s.right_centroids, depth + 1);
+      r = build(free + 1, left_cap, left_cap + right_count, right_cap, right_free, s.right,
+                s.right_centroids, depth + 1);
     };
     if (n >= p_.parallel_min) {
       tbb::parallel_invoke(build_left, build_right);
@@ -102,15 +179,17 @@ class Builder {
   const BvhBuildParams& p_;
   Split& split_;
   BvhNode* nodes_;
+  PrimRef* refs_;
+  float room_area_;
 };
 
 /// Builds the tree over `n` references with `split` into `scratch`, from the root's box and
 /// centroid bounds; sets the leaf count and depth of `out`.
 template <class Split>
-void build_tree(const BvhBuildParams& p, Split& split, uint32_t n, const PrimRefs& in,
-                BvhNode* scratch, BinaryBvh& out) {
-  Builder<Split> builder(p, split, scratch);
-  const auto r = builder.build(0, 0, n, 2, in.bounds, in.centroid_bounds, 0);
+void build_tree(const BvhBuildParams& p, Split& split, uint32_t n, uint32_t cap, const PrimRefs& in,
+                BvhNode* scratch, BinaryBvh& out, float room_area = kInfinity) {
+  Builder<Split> builder(p, split, scratch, out.refs.data(), room_area);
+  const auto r = builder.build(0, 0, n, cap, 2, in.bounds, in.centroid_bounds, 0);
   out.leaves = r.leaves;
   out.max_depth = r.depth;
 }
@@ -172,29 +251,42 @@ BvhBuildParams read_bvh_build_params(const ParamList& params) {
   return p;
 }
 
-BinaryBvh build_binary_bvh(PrimRefs in, const BvhBuildParams& params, bool compact_nodes) {
+BinaryBvh build_binary_bvh(PrimRefs in, const BvhBuildParams& params, bool compact_nodes,
+                           const PrimitiveSet* prims) {
   BinaryBvh out;
   out.refs = std::move(in.refs);
   const auto n = static_cast<uint32_t>(out.refs.size());
   if (n == 0) return out;
+  const bool spatial =
+      prims && params.method == BvhSplitMethod::kBinned && params.spatial_budget > 0.0f;
+  if (spatial && !(params.spatial_budget <= 4.0f))
+    throw Error("bvh: the spatial-split budget must lie in [0, 4]");
+  if (spatial && !prims->all_triangles())
+    throw Error("bvh: spatial splits need a set of static triangles");
+  const uint32_t cap = spatial ? n + uint32_t(double(params.spatial_budget) * n) : n;
+  out.refs.resize(cap);
   // Scratch nodes: the build writes every slot it later reads.
-  BvhNodeArray scratch(2 * size_t(n));
+  BvhNodeArray scratch(2 * size_t(cap));
   scratch[1] = BvhNode{{0, 0, 0, 0, 0, 0}, 0, 0};
   PrimRef* refs = out.refs.data();
   switch (params.method) {
     case BvhSplitMethod::kBinned: {
       BinnedSplitter split{params, refs};
-      build_tree(params, split, n, in, scratch.data(), out);
+      if (spatial) {
+        split.prims = prims;
+        split.min_overlap = params.spatial_alpha * in.bounds.surface_area();
+      }
+      build_tree(params, split, n, cap, in, scratch.data(), out, split.min_overlap);
       break;
     }
     case BvhSplitMethod::kMedian: {
       MedianSplitter split{params, refs};
-      build_tree(params, split, n, in, scratch.data(), out);
+      build_tree(params, split, n, cap, in, scratch.data(), out);
       break;
     }
     case BvhSplitMethod::kSweep: {
       SweepSahSplitter split({refs, n}, params);
-      build_tree(params, split, n, in, scratch.data(), out);
+      build_tree(params, split, n, cap, in, scratch.data(), out);
       break;
     }
   }

@@ -29,7 +29,15 @@ struct BvhBuildParams {
   float traversal_cost = 2.0f;  ///< cost of an inner node relative to one primitive test
   /// Leaves are tested 2^block_shift primitives at a time (SIMD blocks); the SAH counts blocks.
   int block_shift = 0;
-  size_t parallel_min = 4096;   ///< nodes with more references build their children as tasks
+  size_t parallel_min = 4096;  ///< nodes with more references build their children as tasks
+  /// Spatial splits (spatial_split.h; Stich, Friedrich & Dietrich 2009), binned builds only:
+  /// the build may add up to this many references per input reference (in [0, 4]; 0: none).
+  /// They need the primitive set, given to build_binary_bvh.
+  float spatial_budget = 0.0f;
+  /// A spatial split is tried only where the best object split's two boxes overlap by more
+  /// than this fraction of the root's surface area (the paper's alpha, which it sets to 1e-5;
+  /// 0 tries every node).
+  float spatial_alpha = 1e-3f;
 };
 
 /// Reads build=binned|median|sweep (or the bare word), leaf=N (1..64), bins=N (2..kMaxBins, binned
@@ -41,10 +49,10 @@ BvhBuildParams read_bvh_build_params(const ParamList& params);
 /// children starts at an even index (one cache line); children always follow their parent;
 /// `refs` are in leaf order.
 struct BinaryBvh {
-  BvhNodeArray nodes;  ///< root, padding, then child pairs (depth first when compacted)
-  std::vector<PrimRef, ArrayAllocator<PrimRef>> refs;  ///< leaf order; leaves index into it
-  size_t leaves = 0;                                   ///< number of leaves
-  size_t max_depth = 0;                                ///< depth of the deepest leaf (root at 0)
+  BvhNodeArray nodes;    ///< root, padding, then child pairs (depth first when compacted)
+  PrimRefArray refs;     ///< leaf order; leaves index into it
+  size_t leaves = 0;     ///< number of leaves
+  size_t max_depth = 0;  ///< depth of the deepest leaf (root at 0)
 
   /// Number of nodes reachable from the root (inner and leaf).
   size_t node_count() const { return leaves ? 2 * leaves - 1 : 0; }
@@ -61,8 +69,13 @@ inline constexpr int kBvhStackSize = kMaxSahDepth + 40;
 /// Subtrees build in parallel; the
 /// result is identical for every thread count. An empty input gives an empty tree.
 /// With `compact` the nodes are dense, in depth-first order; without, they stay in the build's
-/// scratch array (2 slots per reference, unused ones zero), which suits a caller that
+/// scratch array (2 slots per reference, unused ones unwritten), which suits a caller that
 /// only walks the tree once, from the root (e.g. to collapse it into a wide BVH).
-BinaryBvh build_binary_bvh(PrimRefs refs, const BvhBuildParams& params, bool compact = true);
+/// With `prims` (the set of static triangles the references point into) and a spatial budget,
+/// binned builds also
+/// try spatial splits: references then repeat (parts of one primitive in different subtrees), and
+/// `refs` has unused slots between the leaves' ranges (only those ranges are meaningful).
+BinaryBvh build_binary_bvh(PrimRefs refs, const BvhBuildParams& params, bool compact = true,
+                           const PrimitiveSet* prims = nullptr);
 
 }  // namespace penumbra

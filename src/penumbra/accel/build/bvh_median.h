@@ -26,8 +26,8 @@ struct MedianSplitter {
   PrimRef* refs;                 ///< the builder's references
 
   /// The split of the node over [b, e): a leaf when it fits, else the object median.
-  NodeSplit operator()(uint32_t b, uint32_t e, const Bounds3&, const Bounds3& centroids,
-                       int) const {
+  NodeSplit operator()(uint32_t b, uint32_t e, uint32_t /*cap*/, const Bounds3&,
+                       const Bounds3& centroids, int) const {
     if (e - b <= uint32_t(params.max_leaf)) return NodeSplit::make_leaf();
     return object_median_split({refs + b, e - b}, b, centroids);
   }

@@ -31,7 +31,8 @@ struct alignas(32) BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
-/// Node array: starts on a cache line, huge pages when large.
-using BvhNodeArray = std::vector<BvhNode, ArrayAllocator<BvhNode>>;
+/// Node array: starts on a cache line, huge pages when large; sizing it writes nothing (the
+/// builders write every node that is read).
+using BvhNodeArray = std::vector<BvhNode, NoInitArrayAllocator<BvhNode>>;
 
 }  // namespace penumbra

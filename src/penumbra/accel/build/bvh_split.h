@@ -8,10 +8,17 @@
 
 namespace penumbra {
 
-/// The decision for a node over references [b, e): a leaf, or children [b, mid) and [mid, e).
+/// The decision for a node over references [b, e): a leaf, or children [b, mid) and [mid, e)
+/// (or [mid, end) after a spatial split).
 struct NodeSplit {
   bool leaf = false;        ///< make the node a leaf (the other fields are then unused)
   uint32_t mid = 0;         ///< first reference of the right child (absolute index)
+  /// One past the right child's last reference when the split added references (a spatial
+  /// split writes its two sides over [b, end), end within the node's capacity); 0 means e.
+  uint32_t end = 0;
+  /// The children may still split spatially (the builder gives them room for more references);
+  /// false where this node's spatial split was far from paying, or never tried.
+  bool room = false;
   Bounds3 left, right;      ///< boxes of the two children
   Bounds3 left_centroids;   ///< bounds of centroid2() over the left child
   Bounds3 right_centroids;  ///< bounds of centroid2() over the right child

@@ -68,7 +68,7 @@ SweepSahSplitter::AxisBest SweepSahSplitter::sweep(int axis, uint32_t b, uint32_
   return best;
 }
 
-NodeSplit SweepSahSplitter::operator()(uint32_t b, uint32_t e, const Bounds3& box,
+NodeSplit SweepSahSplitter::operator()(uint32_t b, uint32_t e, uint32_t /*cap*/, const Bounds3& box,
                                        const Bounds3& centroids, int depth) {
   const uint32_t n = e - b;
   const bool parallel = n >= params_.parallel_min;
@@ -81,8 +81,8 @@ NodeSplit SweepSahSplitter::operator()(uint32_t b, uint32_t e, const Bounds3& bo
     for_axes(3, parallel, [&](int a) { best[a] = sweep(a, b, e); });
     for (int a = 1; a < 3; ++a)
       if (best[a].cost < best[axis].cost) axis = a;
-    if (small && sah_prefers_leaf(n, box, best[axis].cost, params_.traversal_cost,
-                                  params_.block_shift))
+    if (small &&
+        sah_prefers_leaf(n, box, best[axis].cost, params_.traversal_cost, params_.block_shift))
       return NodeSplit::make_leaf();
     count = best[axis].count;
   } else {

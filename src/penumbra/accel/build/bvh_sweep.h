@@ -32,8 +32,8 @@ class SweepSahSplitter {
   /// bounds `centroids` at `depth`: the cheapest partition by SAH, a leaf when the SAH prefers it
   /// and it is small enough, the object median below kMaxSahDepth. Reorders [b, e) of the three
   /// arrays; calls on disjoint ranges may run concurrently.
-  NodeSplit operator()(uint32_t b, uint32_t e, const Bounds3& box, const Bounds3& centroids,
-                       int depth);
+  NodeSplit operator()(uint32_t b, uint32_t e, uint32_t cap, const Bounds3& box,
+                       const Bounds3& centroids, int depth);
 
  private:
   /// The cheapest partition along one axis: `count` references go left.
@@ -50,10 +50,10 @@ class SweepSahSplitter {
 
   const BvhBuildParams& params_;
   size_t n_ = 0;
-  PrimRef* sorted_[3] = {};                                  ///< by centroid on x, y, z
-  std::vector<PrimRef, ArrayAllocator<PrimRef>> copies_[2];  ///< the y and z arrays
-  std::vector<PrimRef, ArrayAllocator<PrimRef>> temp_[2];    ///< partition scratch per other axis
-  std::vector<float> right_area_;                            ///< 3 n suffix areas, per axis
+  PrimRef* sorted_[3] = {};        ///< by centroid on x, y, z
+  PrimRefArray copies_[2];         ///< the y and z arrays
+  PrimRefArray temp_[2];           ///< partition scratch per other axis
+  std::vector<float> right_area_;  ///< 3 n suffix areas, per axis
 };
 
 }  // namespace penumbra

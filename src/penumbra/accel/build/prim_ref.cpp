@@ -88,10 +88,11 @@ ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, P
 #endif
 }  // namespace
 
-PrimRefs make_prim_refs(const PrimitiveSet& prims) {
+PrimRefs make_prim_refs(const PrimitiveSet& prims, size_t spare) {
   const size_t n = prims.size();
   const size_t chunks = (n + kChunk - 1) / kChunk;
   PrimRefs out;
+  out.refs.reserve(n + spare);
   out.refs.resize(n);
   std::vector<ChunkTotals> totals(chunks);
   // Boxes per chunk, written at the primitive's own index; invalid ones are marked by id.

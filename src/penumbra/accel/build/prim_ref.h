@@ -24,9 +24,12 @@ struct alignas(32) PrimRef {
 };
 static_assert(sizeof(PrimRef) == 32);
 
+/// An array of references whose sizing writes nothing (the builders fill what they read).
+using PrimRefArray = std::vector<PrimRef, NoInitArrayAllocator<PrimRef>>;
+
 /// Primitive references of a set, with the totals a top-down builder starts from.
 struct PrimRefs {
-  std::vector<PrimRef, ArrayAllocator<PrimRef>> refs;  ///< one per finite primitive, id order
+  PrimRefArray refs;  ///< one per finite primitive, id order
   Bounds3 bounds;                                      ///< union of the boxes
   Bounds3 centroid_bounds;                             ///< bounds of centroid2() over all refs
 };
@@ -34,6 +37,7 @@ struct PrimRefs {
 /// References to every primitive of `prims` with a non-empty box (others can never be hit and are
 /// skipped). Zero coordinates are normalised to +0 so that min/max reductions do not depend on
 /// the order of combination (the build is then identical for every thread count). Parallel.
-PrimRefs make_prim_refs(const PrimitiveSet& prims);
+/// `spare` reserves room for that many more references (spatial splits add them in place).
+PrimRefs make_prim_refs(const PrimitiveSet& prims, size_t spare = 0);
 
 }  // namespace penumbra

@@ -13,7 +13,7 @@ SahCollapse::SahCollapse(const BvhNodeArray& bin, int width, float node_cost, in
     : bin_(bin), width_(width), block_shift_(block_shift), node_cost_(node_cost) {
   if (width < 2 || width > kMaxWidth) throw Error("SahCollapse: width must be in 2..8");
   if (bin.empty() || bin[0].is_leaf()) return;
-  dense_.assign(bin.size(), 0);
+  dense_.resize(bin.size());
   // Number the reachable nodes (depth first), so the table holds only those.
   uint32_t rows = 0;
   std::vector<uint32_t> stack = {0};
@@ -23,8 +23,8 @@ SahCollapse::SahCollapse(const BvhNodeArray& bin, int width, float node_cost, in
     dense_[b] = rows++;
     if (!bin[b].is_leaf()) stack.push_back(bin[b].index), stack.push_back(bin[b].index + 1);
   }
-  cost_.assign(size_t(rows) * width_, 0.0f);
-  choice_.assign(size_t(rows) * width_, 0);
+  cost_.resize(size_t(rows) * width_);
+  choice_.resize(size_t(rows) * width_);
   plan(0, rows >= kParallelRows ? kParallelDepth : 0);
   root_cost_ = cost_[row(0)];
 }

@@ -48,9 +48,10 @@ class SahCollapse {
   int width_, block_shift_;
   float node_cost_;
   // The tables take tens of megabytes on a million triangles: in huge pages (ArrayAllocator),
-  // whose first touch costs a tenth of that of ordinary pages on the virtual machines measured.
+  // whose first touch costs a tenth of that of ordinary pages on the virtual machines measured,
+  // and not zeroed first (every entry read is written before: those of reachable nodes).
   template <class T>
-  using Table = std::vector<T, ArrayAllocator<T>>;
+  using Table = std::vector<T, NoInitArrayAllocator<T>>;
   Table<uint32_t> dense_;  ///< binary node -> row
   /// cost_[row + i - 1]: the least cost of the subtree as at most i slots of a wide node (i in
   /// 1..width). choice_ says how: low nibble `split` = 0 for one slot (the node itself: a leaf,
