@@ -21,30 +21,7 @@ namespace {
 
 using test::TestScene;
 
-// `n` triangles with vertices anywhere in the unit cube: long, large and diagonal, the case
-// pre-splitting is for; plus `small` little ones so that priorities differ.
-TestScene large_triangles(int n, int small, uint64_t seed) {
-  TestScene s{"large_triangles", {}};
-  Pcg32 rng(seed, 3);
-  TriangleMesh m;
-  const auto random_point = [&] {
-    return Vec3(rng.next_float(), rng.next_float(), rng.next_float());
-  };
-  for (int i = 0; i < n + small; ++i) {
-    const Vec3 c = random_point();
-    for (int k = 0; k < 3; ++k) {
-      m.positions.push_back(i < n ? random_point() : c + (random_point() - Vec3(0.5f)) * 0.01f);
-      m.indices.push_back(static_cast<uint32_t>(m.positions.size() - 1));
-    }
-  }
-  s.prims.add_mesh(m, Transform(), 0);
-  return s;
-}
-
-bool inside(const Bounds3& b, Vec3 p) {
-  return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z &&
-         p.z <= b.hi.z;
-}
+using test::large_triangles;
 
 TEST(Presplit, PiecesCoverTheWholeTriangleInsideItsBox) {
   const TestScene s = large_triangles(300, 700, 1);
@@ -66,7 +43,7 @@ TEST(Presplit, PiecesCoverTheWholeTriangleInsideItsBox) {
     split += boxes.size() > 1;
     for (const Bounds3& b : boxes) {
       EXPECT_FALSE(b.empty()) << id;
-      EXPECT_TRUE(inside(whole, b.lo) && inside(whole, b.hi)) << id;
+      EXPECT_TRUE(whole.contains(b.lo) && whole.contains(b.hi)) << id;
     }
     // Vertices, edge midpoints and random points of the triangle: each in some piece.
     const Vec3* v = s.prims.triangle(id);
@@ -76,7 +53,7 @@ TEST(Presplit, PiecesCoverTheWholeTriangleInsideItsBox) {
       points.push_back(test::point_on(s.prims, id, rng.next_float(), rng.next_float()));
     for (const Vec3& p : points) {
       bool covered = false;
-      for (const Bounds3& b : boxes) covered = covered || inside(b, p);
+      for (const Bounds3& b : boxes) covered = covered || b.contains(p);
       ASSERT_TRUE(covered) << "triangle " << id << ": point " << p.x << " " << p.y << " " << p.z
                            << " in none of its " << boxes.size() << " pieces";
     }
@@ -134,22 +111,11 @@ TEST(Presplit, LargeTrianglesCostFewerTestsPerRay) {
   EXPECT_GT(split->stats().prim_refs, plain->stats().prim_refs * 2);
   const auto rays = test::mixed_rays(s.prims, 20000, 5);
   TraversalCost a, b;
-  for (const Ray& ray : rays) {
-    Hit ha, hb;
-    plain->intersect_cost(ray, ha, a);
-    split->intersect_cost(ray, hb, b);
-    ASSERT_EQ(ha.valid(), hb.valid());
-    if (ha.valid()) {
-      ASSERT_EQ(ha.t, hb.t);
-    }
-  }
+  test::trace_both(*plain, *split, rays, a, b);
+
   EXPECT_LT(double(b.prims), 0.6 * double(a.prims));
   EXPECT_LT(b.nodes, a.nodes);
-  const auto sah = [](const Accelerator& acc) {
-    for (const auto& [key, value] : acc.stats().extra)
-      if (key == "sah_cost") return value;
-    return 0.0;
-  };
+  const auto sah = [](const Accelerator& acc) { return test::extra_stat(acc, "sah_cost"); };
   EXPECT_LT(sah(*split), sah(*plain));
 }
 

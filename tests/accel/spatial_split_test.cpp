@@ -25,37 +25,9 @@ namespace {
 
 using test::TestScene;
 
-// `n` long slivers across the unit cube (two far vertices and a third near one of them), the
-// case spatial splits are for, and `small` little triangles.
+// Long, thin triangles across the unit cube, and little ones: the case for spatial splits.
 TestScene slivers(int n, int small, uint64_t seed) {
-  TestScene s{"slivers", {}};
-  Pcg32 rng(seed, 7);
-  TriangleMesh m;
-  const auto random_point = [&] {
-    return Vec3(rng.next_float(), rng.next_float(), rng.next_float());
-  };
-  for (int i = 0; i < n + small; ++i) {
-    const Vec3 a = random_point();
-    const Vec3 b = i < n ? random_point() : a + (random_point() - Vec3(0.5f)) * 0.01f;
-    const Vec3 c = a + (random_point() - Vec3(0.5f)) * 0.01f;
-    for (const Vec3& p : {a, b, c}) {
-      m.positions.push_back(p);
-      m.indices.push_back(static_cast<uint32_t>(m.positions.size() - 1));
-    }
-  }
-  s.prims.add_mesh(m, Transform(), 0);
-  return s;
-}
-
-bool inside(const Bounds3& b, Vec3 p) {
-  return p.x >= b.lo.x && p.x <= b.hi.x && p.y >= b.lo.y && p.y <= b.hi.y && p.z >= b.lo.z &&
-         p.z <= b.hi.z;
-}
-
-Bounds3 union_of(std::span<const PrimRef> refs) {
-  Bounds3 b;
-  for (const PrimRef& r : refs) b.extend(r.bounds());
-  return b;
+  return test::large_triangles(n, small, seed, true);
 }
 
 TEST(SpatialSplit, TheTwoSidesCoverEveryTriangle) {
@@ -99,7 +71,7 @@ TEST(SpatialSplit, TheTwoSidesCoverEveryTriangle) {
     }
     for (const Vec3& p : points) {
       const bool covered =
-          std::any_of(boxes.begin(), boxes.end(), [&](const Bounds3& b) { return inside(b, p); });
+          std::any_of(boxes.begin(), boxes.end(), [&](const Bounds3& b) { return b.contains(p); });
       ASSERT_TRUE(covered) << "triangle " << id;
     }
   }
@@ -176,7 +148,7 @@ TEST(SpatialSplit, SameTreeAtEveryThreadCountAndWithinTheBudget) {
       for (const auto& [node, r] : leaves) {
         refs += r.size();
         for (const PrimRef& ref : r) {
-          EXPECT_TRUE(inside(node.bounds(), ref.lo) && inside(node.bounds(), ref.hi));
+          EXPECT_TRUE(node.bounds().contains(ref.lo) && node.bounds().contains(ref.hi));
           ++seen[ref.id];
         }
       }
@@ -215,35 +187,19 @@ TEST(SpatialSplit, LongTrianglesCostLessWorkPerRay) {
   EXPECT_LE(split->stats().prim_refs, 2 * plain->stats().prim_refs);
   const auto rays = test::mixed_rays(s.prims, 20000, 5);
   TraversalCost a, b;
-  for (const Ray& ray : rays) {
-    Hit ha, hb;
-    plain->intersect_cost(ray, ha, a);
-    split->intersect_cost(ray, hb, b);
-    ASSERT_EQ(ha.valid(), hb.valid());
-    if (ha.valid()) {
-      ASSERT_EQ(ha.t, hb.t);
-      ASSERT_EQ(ha.prim, hb.prim);
-    }
-    ASSERT_EQ(plain->occluded(ray), split->occluded(ray));
-  }
+  test::trace_both(*plain, *split, rays, a, b);
+  for (const Ray& ray : rays) ASSERT_EQ(plain->occluded(ray), split->occluded(ray));
+
   EXPECT_LT(double(b.prims), 0.8 * double(a.prims));
   EXPECT_LT(double(b.nodes), 0.9 * double(a.nodes));
-  const auto sah = [](const Accelerator& acc) {
-    for (const auto& [key, value] : acc.stats().extra)
-      if (key == "sah_cost") return value;
-    return 0.0;
-  };
+  const auto sah = [](const Accelerator& acc) { return test::extra_stat(acc, "sah_cost"); };
   EXPECT_LT(sah(*split), 0.9 * sah(*plain));
 }
 
 TEST(SpatialSplit, SmallSetsKeepTheCheaperOfTheTwoTrees) {
   // Up to 4,096 primitives `bvh` builds with and without spatial splits and keeps the tree of
   // lower wide SAH cost: never dearer than object splits alone, cheaper on slivers.
-  const auto sah = [](const Accelerator& acc) {
-    for (const auto& [key, value] : acc.stats().extra)
-      if (key == "sah_cost") return value;
-    return 0.0;
-  };
+  const auto sah = [](const Accelerator& acc) { return test::extra_stat(acc, "sah_cost"); };
   for (const TestScene& scene :
        {test::room_with_boxes(5, 1), test::random_soup(500, 2), slivers(300, 300, 3)}) {
     auto split = make_accelerator("bvh"), plain = make_accelerator("bvh:spatial=0");

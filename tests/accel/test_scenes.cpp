@@ -1,5 +1,7 @@
 #include "test_scenes.h"
 
+#include <gtest/gtest.h>
+
 #include <cctype>
 #include <cmath>
 #include <limits>
@@ -8,8 +10,9 @@
 #include <fmt/format.h>
 
 #include "penumbra/core/rng.h"
-#include "penumbra/geometry/sphere_direction.h"
 #include "penumbra/core/transform.h"
+#include "penumbra/geometry/sphere_direction.h"
+#include "penumbra/geometry/triangle_mesh.h"
 
 namespace penumbra::test {
 
@@ -162,6 +165,51 @@ TestScene degenerate_triangles(uint64_t seed) {
     }
   }
   return s;
+}
+
+TestScene large_triangles(int n, int small, uint64_t seed, bool slivers) {
+  TestScene s{slivers ? "slivers" : "large_triangles", {}};
+  Pcg32 rng(seed, slivers ? 7 : 3);
+  TriangleMesh m;
+  const auto random_point = [&] {
+    return Vec3(rng.next_float(), rng.next_float(), rng.next_float());
+  };
+  const auto near = [&](Vec3 p) { return p + (random_point() - Vec3(0.5f)) * 0.01f; };
+  for (int i = 0; i < n + small; ++i) {
+    Vec3 v[3];
+    if (slivers) {
+      v[0] = random_point();
+      v[1] = i < n ? random_point() : near(v[0]);
+      v[2] = near(v[0]);
+    } else {
+      const Vec3 c = random_point();
+      for (Vec3& p : v) p = i < n ? random_point() : near(c);
+    }
+    for (const Vec3& p : v) {
+      m.positions.push_back(p);
+      m.indices.push_back(static_cast<uint32_t>(m.positions.size() - 1));
+    }
+  }
+  s.prims.add_mesh(m, Transform(), 0);
+  return s;
+}
+
+void trace_both(const Accelerator& a, const Accelerator& b, const std::vector<Ray>& rays,
+                TraversalCost& cost_a, TraversalCost& cost_b) {
+  for (const Ray& ray : rays) {
+    Hit ha, hb;
+    a.intersect_cost(ray, ha, cost_a);
+    b.intersect_cost(ray, hb, cost_b);
+    ASSERT_EQ(ha.valid(), hb.valid());
+    if (ha.valid()) ASSERT_EQ(ha.t, hb.t);
+  }
+}
+
+double extra_stat(const Accelerator& acc, const std::string& key) {
+  for (const auto& [k, v] : acc.stats().extra)
+    if (k == key) return v;
+  ADD_FAILURE() << acc.name() << " reports no " << key;
+  return 0.0;
 }
 
 TestScene torus(int rings, int sides) {

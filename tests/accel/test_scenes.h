@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/accel/accelerator.h"
 #include "penumbra/core/ray.h"
 #include "penumbra/geometry/primitive_set.h"
 
@@ -53,6 +54,20 @@ void set_random_times(std::vector<Ray>& rays, uint64_t seed);
 /// with zero components and axis-parallel rays with origins on vertex coordinates (so they run
 /// along box and triangle planes). tmin = 0, tmax = infinity.
 std::vector<Ray> mixed_rays(const PrimitiveSet& prims, size_t n, uint64_t seed);
+
+/// `n` large triangles across the unit cube and `small` little ones (about 0.01 across), from
+/// `seed`. Without `slivers` all three vertices of a large one lie anywhere (large, diagonal
+/// triangles: pre-splitting's case); with it two lie anywhere and the third near the first
+/// (long, thin ones: the case of spatial splits).
+TestScene large_triangles(int n, int small, uint64_t seed, bool slivers = false);
+
+/// Traces `rays` through `a` and `b`, adding the work of each to `cost_a` and `cost_b`, and
+/// checks (gtest) that both find a hit for the same rays at the same distance.
+void trace_both(const Accelerator& a, const Accelerator& b, const std::vector<Ray>& rays,
+                TraversalCost& cost_a, TraversalCost& cost_b);
+
+/// A structure's figure `key` from AccelStats::extra (a test failure when it reports none).
+double extra_stat(const Accelerator& acc, const std::string& key);
 
 /// A structure's name made a valid test name (every character but letters and digits as '_'),
 /// for INSTANTIATE_TEST_SUITE_P over the registry.

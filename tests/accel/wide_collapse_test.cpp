@@ -20,13 +20,6 @@
 namespace penumbra::test {
 namespace {
 
-double stat(const Accelerator& a, const std::string& key) {
-  for (const auto& [k, v] : a.stats().extra)
-    if (k == key) return v;
-  ADD_FAILURE() << a.name() << " reports no " << key;
-  return 0.0;
-}
-
 BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf) {
   BvhBuildParams p;
   p.max_leaf = max_leaf;
@@ -68,7 +61,7 @@ TEST(SahCollapse, PlannedCostIsTheBuiltTreesAndAtMostTheGreedyOne) {
       auto sah = make_accelerator(base + ",collapse=sah");
       greedy->build(scene.prims);
       sah->build(scene.prims);
-      const double g = stat(*greedy, "sah_cost"), s = stat(*sah, "sah_cost");
+      const double g = extra_stat(*greedy, "sah_cost"), s = extra_stat(*sah, "sah_cost");
       EXPECT_LE(s, g * (1 + 1e-5)) << scene.name << " width " << width;
       EXPECT_GT(s, 1.0) << scene.name;
       EXPECT_EQ(sah->stats().leaves, greedy->stats().leaves) << scene.name;
