@@ -10,14 +10,10 @@
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_split.h"
 #include "penumbra/accel/build/kd_clip.h"
-#include "penumbra/core/parallel.h"
 
 namespace penumbra {
 
 namespace {
-
-/// References per parallel chopping task: fixed, so the chunks never depend on the thread count.
-constexpr size_t kChopChunk = 16384;
 
 /// The candidate planes of one axis: the inner boundaries of `bins` equal bins over the node's
 /// box (plane k separates bin k from bin k + 1), and the mapping of a coordinate to its bin.
@@ -68,35 +64,26 @@ struct ChopBins {
       }
   }
 
-  void add(std::span<const PrimRef> refs, const AxisPlanes* axes) {
-    for (const PrimRef& r : refs) {
+  void add(const PrimRef& r, const AxisPlanes* axes) {
 #if defined(__AVX__)
-      const __m256 g = _mm256_xor_ps(_mm256_load_ps(&r.lo.x),
-                                     _mm256_setr_ps(0, 0, 0, 0, -0.0f, -0.0f, -0.0f, -0.0f));
+    const __m256 g = _mm256_xor_ps(_mm256_load_ps(&r.lo.x),
+                                   _mm256_setr_ps(0, 0, 0, 0, -0.0f, -0.0f, -0.0f, -0.0f));
 #endif
-      for (int a = 0; a < 3; ++a) {
-        const AxisPlanes& ap = axes[a];
-        if (ap.bins == 0) continue;
-        const int first = ap.bin(r.lo[a]), last = std::max(first, ap.bin(r.hi[a]));
-        ++enter[a][first], ++exit[a][last];
-        for (int k = first; k <= last; ++k) {
-          float* x = box[a][k];
+    for (int a = 0; a < 3; ++a) {
+      const AxisPlanes& ap = axes[a];
+      if (ap.bins == 0) continue;
+      const int first = ap.bin(r.lo[a]), last = std::max(first, ap.bin(r.hi[a]));
+      ++enter[a][first], ++exit[a][last];
+      for (int k = first; k <= last; ++k) {
+        float* x = box[a][k];
 #if defined(__AVX__)
-          _mm256_store_ps(x, _mm256_min_ps(_mm256_load_ps(x), g));
+        _mm256_store_ps(x, _mm256_min_ps(_mm256_load_ps(x), g));
 #else
-          for (int c = 0; c < 3; ++c)
-            x[c] = std::min(x[c], r.lo[c]), x[4 + c] = std::min(x[4 + c], -r.hi[c]);
+        for (int c = 0; c < 3; ++c)
+          x[c] = std::min(x[c], r.lo[c]), x[4 + c] = std::min(x[4 + c], -r.hi[c]);
 #endif
-        }
       }
     }
-  }
-  void merge(const ChopBins& o, int bins) {
-    for (int a = 0; a < 3; ++a)
-      for (int k = 0; k < bins; ++k) {
-        for (int c = 0; c < 8; ++c) box[a][k][c] = std::min(box[a][k][c], o.box[a][k][c]);
-        enter[a][k] += o.enter[a][k], exit[a][k] += o.exit[a][k];
-      }
   }
   /// Bin k of axis a, clamped to its slab along a (the node's box beyond the end planes).
   Bounds3 bounds(int a, int k, const AxisPlanes& ap, const Bounds3& node) const {
@@ -135,7 +122,7 @@ SpatialSplit find_spatial_split(std::span<const PrimRef> refs, const Bounds3& bo
   const size_t stride =
       max_samples ? std::max<size_t>(1, (refs.size() + max_samples - 1) / max_samples) : 1;
   size_t sampled = 0;
-  for (size_t i = 0; i < refs.size(); i += stride, ++sampled) all.add(refs.subspan(i, 1), axes);
+  for (size_t i = 0; i < refs.size(); i += stride, ++sampled) all.add(refs[i], axes);
   const float weight = float(refs.size()) / float(std::max<size_t>(sampled, 1));
   SpatialSplit best;
   for (int a = 0; a < 3; ++a) {
