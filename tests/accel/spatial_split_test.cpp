@@ -206,7 +206,9 @@ TEST(SpatialSplit, SmallSetsKeepTheCheaperOfTheTwoTrees) {
     split->build(scene.prims);
     plain->build(scene.prims);
     EXPECT_LE(sah(*split), sah(*plain)) << scene.name;
-    if (scene.name == std::string("slivers")) EXPECT_LT(sah(*split), 0.95 * sah(*plain));
+    if (scene.name == std::string("slivers")) {
+      EXPECT_LT(sah(*split), 0.95 * sah(*plain));
+    }
   }
 }
 

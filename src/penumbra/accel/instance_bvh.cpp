@@ -47,11 +47,9 @@ void InstanceBvh::build(std::vector<InstancedObject> objects, std::vector<Instan
     const InstancedObject& o = objects_[instances_[i].object];
     const Bounds3 b = instance_bounds(instances_[i].to_world, o.prims->bounds());
     if (b.empty()) continue;
-    PrimRef r;
-    r.lo = b.lo + Vec3(0.0f), r.hi = b.hi + Vec3(0.0f), r.id = i, r.pad = 0;
-    refs.refs.push_back(r);
+    refs.refs.push_back(make_prim_ref(b, i));
     refs.bounds.extend(b);
-    refs.centroid_bounds.extend(r.centroid2());
+    refs.centroid_bounds.extend(refs.refs.back().centroid2());
   }
   bounds_ = refs.bounds;
   BvhBuildParams params;

@@ -49,7 +49,7 @@ int grid_plane(const Bounds3& scene, const Bounds3& b, int axis, float& pos) {
 uint32_t split(const PrimitiveSet& prims, const Bounds3& scene, uint32_t id, const Bounds3& box,
                uint32_t pieces, int depth, PrimRef* out) {
   const auto emit = [&] {
-    *out = {box.lo + Vec3(0.0f), id, box.hi + Vec3(0.0f), 0};
+    *out = make_prim_ref(box, id);
     return 1u;
   };
   if (pieces <= 1 || depth >= kMaxDepth) return emit();

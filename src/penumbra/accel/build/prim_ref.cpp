@@ -31,8 +31,7 @@ ChunkTotals generic_refs(const PrimitiveSet& prims, size_t begin, size_t end, Pr
       r = {Vec3(0.0f), kNoPrim, Vec3(0.0f), 0};
       continue;
     }
-    // x + 0 turns -0 into +0 and leaves every other value unchanged.
-    r = {box.lo + Vec3(0.0f), static_cast<uint32_t>(i), box.hi + Vec3(0.0f), 0};
+    r = make_prim_ref(box, static_cast<uint32_t>(i));
     t.bounds.extend(r.bounds());
     t.centroids.extend(r.centroid2());
     ++t.valid;

@@ -24,14 +24,21 @@ struct alignas(32) PrimRef {
 };
 static_assert(sizeof(PrimRef) == 32);
 
+/// The reference of primitive `id` with box `box`, zero coordinates made +0 (x + 0 turns -0
+/// into +0 and leaves every other value unchanged), so that min/max reductions over
+/// references do not depend on the order of combination.
+inline PrimRef make_prim_ref(const Bounds3& box, uint32_t id) {
+  return {box.lo + Vec3(0.0f), id, box.hi + Vec3(0.0f), 0};
+}
+
 /// An array of references whose sizing writes nothing (the builders fill what they read).
 using PrimRefArray = std::vector<PrimRef, NoInitArrayAllocator<PrimRef>>;
 
 /// Primitive references of a set, with the totals a top-down builder starts from.
 struct PrimRefs {
-  PrimRefArray refs;  ///< one per finite primitive, id order
-  Bounds3 bounds;                                      ///< union of the boxes
-  Bounds3 centroid_bounds;                             ///< bounds of centroid2() over all refs
+  PrimRefArray refs;        ///< one per finite primitive, id order
+  Bounds3 bounds;           ///< union of the boxes
+  Bounds3 centroid_bounds;  ///< bounds of centroid2() over all refs
 };
 
 /// References to every primitive of `prims` with a non-empty box (others can never be hit and are

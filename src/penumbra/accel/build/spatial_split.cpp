@@ -98,19 +98,6 @@ struct ChopBins {
   }
 };
 
-/// +0 for -0 (the sum of -0 and +0 is +0), so that boxes made by clipping reduce as those of
-/// make_prim_refs do.
-Bounds3 without_negative_zero(Bounds3 b) {
-  b.lo = b.lo + Vec3(0.0f), b.hi = b.hi + Vec3(0.0f);
-  return b;
-}
-
-PrimRef make_ref(const Bounds3& b, const PrimRef& of) {
-  PrimRef r = of;
-  r.lo = b.lo, r.hi = b.hi;
-  return r;
-}
-
 }  // namespace
 
 SpatialSplit find_spatial_split(std::span<const PrimRef> refs, const Bounds3& box, int bins,
@@ -223,10 +210,9 @@ void apply_spatial_split(const PrimitiveSet& prims, std::span<const PrimRef> ref
     Bounds3 below, above;
     split_prim_bounds(prims, r.id, r.bounds(), a, pos, true, below, above);
     if (below.empty() && above.empty()) below = r.bounds();  // never lose a reference
-    if (!below.empty())
-      add(out.left, out.left_box, out.left_centroids, make_ref(without_negative_zero(below), r));
+    if (!below.empty()) add(out.left, out.left_box, out.left_centroids, make_prim_ref(below, r.id));
     if (!above.empty())
-      add(out.right, out.right_box, out.right_centroids, make_ref(without_negative_zero(above), r));
+      add(out.right, out.right_box, out.right_centroids, make_prim_ref(above, r.id));
   }
 }
 

@@ -23,12 +23,13 @@ namespace penumbra {
 
 /// The best spatial split found by chopped binning; `axis` is -1 when none was found.
 struct SpatialSplit {
-  int axis = -1;             ///< split axis, or -1
-  float pos = 0.0f;          ///< the plane: parts below go left, above go right
-  float cost = 0.0f;         ///< area(left) T(left) + area(right) T(right), not normalised
-  Bounds3 left, right;       ///< boxes of the two sides (from the bins)
-  uint32_t left_count = 0;   ///< references entering on the left (before unsplitting)
-  uint32_t right_count = 0;  ///< references leaving on the right
+  int axis = -1;        ///< split axis, or -1
+  float pos = 0.0f;     ///< the plane: parts below go left, above go right
+  float cost = 0.0f;    ///< area(left) T(left) + area(right) T(right), not normalised
+  Bounds3 left, right;  ///< boxes of the two sides (from the bins)
+  /// References entering on the left and leaving on the right (before unsplitting; estimated
+  /// from the sample when the search had one).
+  uint32_t left_count = 0, right_count = 0;
 };
 
 /// Finds the spatial split of `refs` (inside `box`) over `bins` equal bins per axis (2..64)
