@@ -1,6 +1,7 @@
 #include "penumbra/accel/build/bvh_builder.h"
 
 #include <algorithm>
+#include <atomic>
 #include <string>
 
 #include <fmt/format.h>
@@ -103,10 +104,18 @@ struct BinnedSplitter {
   }
 };
 
-/// Recursive builder into a scratch node array in which the subtree over references [b, e) owns
-/// the 2 (e - b) - 2 slots after its own children: disjoint regions make the node indices (and so
-/// the tree) independent of the order in which parallel tasks run. The root sits at 0 and slot 1
-/// is padding, so every child pair starts at an even index. A final pass may compact it.
+/// Recursive builder into a scratch node array. Child pairs take slots from a shared counter in
+/// the order the build reaches them; a subtree of fewer than `parallel_min` references builds
+/// serially into a per-thread buffer and then takes one run of slots for all its nodes. So only
+/// as many slots are written as the tree has nodes: the scratch array's bound (2 per reference)
+/// is virtual memory, mostly never touched. Regions fixed per subtree (2 slots per reference of
+/// each) made the tree's node indices independent of task order, but spread a tree of about a
+/// quarter of that many nodes over all of it, and every huge page of it was faulted in and zeroed
+/// (on the 1M-triangle terrain with spatial room, 128 MB for 16: a fifth of the binary build).
+/// The slots now depend on the order in which tasks finish; the tree itself (structure, boxes,
+/// leaf ranges of the references) does not, and compact() or a walk from the root (the wide
+/// collapse) gives the same result at any thread count. The root sits at 0 and slot 1 is
+/// padding, and runs of slots have even lengths, so every child pair starts at an even index.
 /// `Split` decides each node (a NodeSplit from its range, box, centroid bounds and depth) and
 /// reorders the references; it is called concurrently on disjoint ranges.
 template <class Split>
@@ -122,18 +131,48 @@ class Builder {
     size_t leaves = 0, depth = 0;
   };
 
-  /// Builds the subtree over refs [b, e) into node `node`, with descendants from slot `free`.
-  /// The subtree may grow its references (spatial splits) up to `cap` (>= e) and owns the
-  /// 2 (cap - b) - 2 node slots from `free`.
-  Result build(uint32_t node, uint32_t b, uint32_t e, uint32_t cap, uint32_t free,
-               const Bounds3& box, const Bounds3& centroids, int depth) {
-    const uint32_t n = e - b;
+  /// Builds the subtree over refs [b, e) into node `node` of the scratch array. The subtree may
+  /// grow its references (spatial splits) up to `cap` (>= e).
+  Result build(uint32_t node, uint32_t b, uint32_t e, uint32_t cap, const Bounds3& box,
+               const Bounds3& centroids, int depth) {
+    if (e - b < p_.parallel_min) return build_serial(node, b, e, cap, box, centroids, depth);
     BvhNode& out = nodes_[node];
-    out.set_bounds(box);
-    if (n == 1) return make_leaf(out, b, n, depth);
-    const NodeSplit s = split_(b, e, cap, box, centroids, depth);
-    if (s.leaf) return make_leaf(out, b, n, depth);
+    Result l, r;
+    const auto children = [&](const NodeSplit& s, const Span& left, const Span& right) {
+      const auto kids = next_.fetch_add(2, std::memory_order_relaxed);
+      tbb::parallel_invoke(
+          [&] { l = build(kids, left.b, left.e, left.cap, s.left, s.left_centroids, depth + 1); },
+          [&] {
+            r = build(kids + 1, right.b, right.e, right.cap, s.right, s.right_centroids, depth + 1);
+          });
+      return kids;
+    };
+    if (!node_step(out, b, e, cap, box, centroids, depth, children)) return {1, size_t(depth)};
+    return {l.leaves + r.leaves, std::max(l.depth, r.depth)};
+  }
 
+ private:
+  /// A child's references: [b, e), room up to cap.
+  struct Span {
+    uint32_t b, e, cap;
+  };
+
+  /// Splits the node over [b, e) into `out`: a leaf (returns false), or an inner node whose
+  /// children `children(split, left, right)` builds, returning the slot of the pair.
+  template <class Children>
+  bool node_step(BvhNode& out, uint32_t b, uint32_t e, uint32_t cap, const Bounds3& box,
+                 const Bounds3& centroids, int depth, const Children& children) {
+    const uint32_t n = e - b;
+    out.set_bounds(box);
+    if (n == 1) {
+      out.index = b, out.count = n;
+      return false;
+    }
+    const NodeSplit s = split_(b, e, cap, box, centroids, depth);
+    if (s.leaf) {
+      out.index = b, out.count = n;
+      return false;
+    }
     // The room left for more references goes to the children that may still split spatially,
     // shared in proportion to their sizes (as Embree's spatial-split builder does); the right
     // one's references move up. A child too small to split spatially gets none: its subtree
@@ -150,30 +189,60 @@ class Builder {
       if (left_cap != mid)
         std::copy_backward(refs_ + mid, refs_ + end, refs_ + left_cap + right_count);
     }
-    // Children at (free, free + 1); their descendants in disjoint regions after them.
-    out.index = free, out.count = 0;
-    const uint32_t left_free = free + 2, right_free = left_free + 2 * (left_cap - b) - 2;
-    Result l, r;
-    auto build_left = [&] {
-      l = build(free, b, mid, left_cap, left_free, s.left, s.left_centroids, depth + 1);
-    };
-    auto build_right = [&] {
-      r = build(free + 1, left_cap, left_cap + right_count, right_cap, right_free, s.right,
-                s.right_centroids, depth + 1);
-    };
-    if (n >= p_.parallel_min) {
-      tbb::parallel_invoke(build_left, build_right);
-    } else {
-      build_left();
-      build_right();
-    }
-    return {l.leaves + r.leaves, std::max(l.depth, r.depth)};
+    out.count = 0;
+    out.index =
+        children(s, Span{b, mid, left_cap}, Span{left_cap, left_cap + right_count, right_cap});
+    return true;
   }
 
- private:
-  Result make_leaf(BvhNode& out, uint32_t b, uint32_t n, int depth) {
-    out.index = b, out.count = n;
-    return {1, size_t(depth)};
+  /// Nodes of a serial subtree, indexed from 0: its root, padding, then child pairs.
+  using Local = std::vector<BvhNode, NoInitArrayAllocator<BvhNode>>;
+
+  /// Builds the subtree under `node` serially in a buffer, then copies its nodes below the root
+  /// to one run of scratch slots.
+  Result build_serial(uint32_t node, uint32_t b, uint32_t e, uint32_t cap, const Bounds3& box,
+                      const Bounds3& centroids, int depth) {
+    // One buffer per thread, reused from subtree to subtree (its capacity stays). The guard
+    // gives a nested use (none is expected: the splits of small nodes start no tasks) its own.
+    thread_local Local buffer;
+    thread_local bool busy = false;
+    Local own;
+    Local& local = busy ? own : buffer;
+    const bool was_busy = busy;
+    busy = true;
+    local.resize(2);
+    const Result r = build_local(local, 0, b, e, cap, box, centroids, depth);
+    const auto extra = static_cast<uint32_t>(local.size() - 2);  // even: pairs
+    const uint32_t base = extra ? next_.fetch_add(extra, std::memory_order_relaxed) : 0;
+    // Local pair slot i (>= 2) becomes scratch slot base + i - 2.
+    const auto place = [&](BvhNode n) {
+      if (!n.is_leaf()) n.index = n.index - 2 + base;
+      return n;
+    };
+    nodes_[node] = place(local[0]);
+    for (uint32_t i = 0; i < extra; ++i) nodes_[base + i] = place(local[2 + i]);
+    busy = was_busy;
+    return r;
+  }
+
+  /// The serial recursion into `local`, child pairs appended in depth-first order.
+  Result build_local(Local& local, uint32_t node, uint32_t b, uint32_t e, uint32_t cap,
+                     const Bounds3& box, const Bounds3& centroids, int depth) {
+    Result l, r;
+    const auto children = [&](const NodeSplit& s, const Span& left, const Span& right) {
+      const auto kids = static_cast<uint32_t>(local.size());
+      local.resize(kids + 2);
+      l = build_local(local, kids, left.b, left.e, left.cap, s.left, s.left_centroids, depth + 1);
+      r = build_local(local, kids + 1, right.b, right.e, right.cap, s.right, s.right_centroids,
+                      depth + 1);
+      return kids;
+    };
+    // Built in a copy: the recursion may reallocate `local`.
+    BvhNode out;
+    const bool inner = node_step(out, b, e, cap, box, centroids, depth, children);
+    local[node] = out;
+    if (!inner) return {1, size_t(depth)};
+    return {l.leaves + r.leaves, std::max(l.depth, r.depth)};
   }
 
   const BvhBuildParams& p_;
@@ -181,6 +250,7 @@ class Builder {
   BvhNode* nodes_;
   PrimRef* refs_;
   float room_area_;
+  std::atomic<uint32_t> next_{2};  ///< the next free scratch slot (root at 0, padding at 1)
 };
 
 /// Builds the tree over `n` references with `split` into `scratch`, from the root's box and
@@ -189,7 +259,7 @@ template <class Split>
 void build_tree(const BvhBuildParams& p, Split& split, uint32_t n, uint32_t cap, const PrimRefs& in,
                 BvhNode* scratch, BinaryBvh& out, float room_area = kInfinity) {
   Builder<Split> builder(p, split, scratch, out.refs.data(), room_area);
-  const auto r = builder.build(0, 0, n, cap, 2, in.bounds, in.centroid_bounds, 0);
+  const auto r = builder.build(0, 0, n, cap, in.bounds, in.centroid_bounds, 0);
   out.leaves = r.leaves;
   out.max_depth = r.depth;
 }

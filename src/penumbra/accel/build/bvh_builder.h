@@ -69,8 +69,9 @@ inline constexpr int kBvhStackSize = kMaxSahDepth + 40;
 /// Subtrees build in parallel; the
 /// result is identical for every thread count. An empty input gives an empty tree.
 /// With `compact` the nodes are dense, in depth-first order; without, they stay in the build's
-/// scratch array (2 slots per reference, unused ones unwritten), which suits a caller that
-/// only walks the tree once, from the root (e.g. to collapse it into a wide BVH).
+/// scratch array (2 slots per reference, the unused ones unwritten, the order of the pairs
+/// depending on the order in which parallel tasks ran), which suits a caller that only walks the
+/// tree from the root (e.g. to collapse it into a wide BVH): the tree it finds is the same.
 /// With `prims` (the set of static triangles the references point into) and a spatial budget,
 /// binned builds also
 /// try spatial splits: references then repeat (parts of one primitive in different subtrees), and
