@@ -309,5 +309,62 @@ TEST(BvhBuild, SameTreeForEveryThreadCount) {
   }
 }
 
+/// The nodes of `t` in depth-first order from the root, each inner node's child index replaced
+/// by its position in that order: the tree, whatever slots its nodes took.
+std::vector<BvhNode> depth_first(const BinaryBvh& t) {
+  std::vector<BvhNode> out;
+  std::vector<uint32_t> stack{0};
+  while (!stack.empty()) {
+    const uint32_t k = stack.back();
+    stack.pop_back();
+    BvhNode n = t.nodes[k];
+    if (!n.is_leaf()) {
+      stack.push_back(n.index + 1), stack.push_back(n.index);
+      n.index = 0;  // the order itself records the structure
+    }
+    out.push_back(n);
+  }
+  return out;
+}
+
+TEST(BvhBuild, UncompactedTreeTakesOnlyItsOwnSlotsAndIsTheSameForEveryThreadCount) {
+  // Binned builds with and without spatial splits, with parallel subtrees from 64 references
+  // on, so that many subtrees build concurrently and take their slots in a changing order.
+  const TestScene s = torus(200, 125);
+  for (const float spatial : {0.0f, 1.0f}) {
+    BvhBuildParams p = params_of("bvh");
+    p.parallel_min = 64;
+    p.spatial_budget = spatial;
+    std::vector<BvhNode> reference;
+    for (int threads : {1, 2, 3}) {
+      const ThreadLimit limit(threads);
+      const size_t spare = size_t(spatial * float(s.prims.size())) + 1;
+      const BinaryBvh t = build_binary_bvh(make_prim_refs(s.prims, spare), p, false, &s.prims);
+      // Slots: the root, the padding and one pair per inner node, nothing beyond.
+      uint32_t highest = 0;
+      std::vector<uint32_t> stack{0};
+      while (!stack.empty()) {
+        const uint32_t k = stack.back();
+        stack.pop_back();
+        highest = std::max(highest, k);
+        if (!t.nodes[k].is_leaf()) {
+          EXPECT_EQ(t.nodes[k].index % 2, 0u) << "a pair starts at an even slot";
+          EXPECT_GT(t.nodes[k].index, k) << "children follow their parent";
+          stack.push_back(t.nodes[k].index), stack.push_back(t.nodes[k].index + 1);
+        }
+      }
+      EXPECT_EQ(size_t(highest) + 1, 2 * t.leaves) << spatial << " " << threads << " threads";
+      const std::vector<BvhNode> tree = depth_first(t);
+      if (threads == 1) {
+        reference = tree;
+        continue;
+      }
+      ASSERT_EQ(tree.size(), reference.size()) << spatial << " " << threads << " threads";
+      EXPECT_EQ(std::memcmp(tree.data(), reference.data(), tree.size() * sizeof(BvhNode)), 0)
+          << spatial << " " << threads << " threads";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra::test
