@@ -26,10 +26,14 @@ struct Ray {
 /// that is not NaN and not empty. Every structure answers "no hit" for any other ray before its
 /// traversal starts, so a NaN from a broken shader or an overflowing scene never reaches a
 /// traversal loop (where a NaN slab test passes every box).
+/// One branch for the whole test: x - x is 0 exactly when x is finite (NaN for an infinity or
+/// a NaN), so a sum of six such differences is 0 exactly when all six are; the rest combine as
+/// bits.
 inline bool traceable(const Ray& r) {
-  return std::isfinite(r.o.x) && std::isfinite(r.o.y) && std::isfinite(r.o.z) &&
-         std::isfinite(r.d.x) && std::isfinite(r.d.y) && std::isfinite(r.d.z) &&
-         (r.d.x != 0.0f || r.d.y != 0.0f || r.d.z != 0.0f) && r.tmin <= r.tmax;
+  const float finite = ((r.o.x - r.o.x) + (r.o.y - r.o.y)) + ((r.o.z - r.o.z) + (r.d.x - r.d.x)) +
+                       ((r.d.y - r.d.y) + (r.d.z - r.d.z));
+  const bool nonzero = (r.d.x != 0.0f) | (r.d.y != 0.0f) | (r.d.z != 0.0f);
+  return (finite == 0.0f) & nonzero & (r.tmin <= r.tmax);
 }
 
 }  // namespace penumbra

@@ -210,7 +210,7 @@ class Builder {
     Local& local = busy ? own : buffer;
     const bool was_busy = busy;
     busy = true;
-    local.resize(2);
+    local.assign(2, BvhNode{});  // the root (its parent's slot, copied out below) and padding
     const Result r = build_local(local, 0, b, e, cap, box, centroids, depth);
     const auto extra = static_cast<uint32_t>(local.size() - 2);  // even: pairs
     const uint32_t base = extra ? next_.fetch_add(extra, std::memory_order_relaxed) : 0;
