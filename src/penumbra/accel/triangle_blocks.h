@@ -201,7 +201,7 @@ inline F ray_lanes(F8 x) {
 /// accepts their hits in lane order, as the scalar loop would; returns whether one was found
 /// (kAnyHit: as soon as one is, leaving `hit` unspecified).
 template <bool kAnyHit, class F>
-inline bool test_lanes(const BlockRay& r, const TriangleBlock* blk, Hit& hit) {
+[[gnu::always_inline]] inline bool test_lanes(const BlockRay& r, const TriangleBlock* blk, Hit& hit) {
   using I = IntOf<F>;
   const int kx = r.kx, ky = r.ky, kz = r.kz;
   const F ox = ray_lanes<F>(r.ox), oy = ray_lanes<F>(r.oy), oz = ray_lanes<F>(r.oz);
@@ -274,7 +274,8 @@ inline bool test_lanes(const BlockRay& r, const TriangleBlock* blk, Hit& hit) {
 }  // namespace block_detail
 
 template <bool kAnyHit>
-bool TriangleBlocks::intersect(const BlockRay& r, uint32_t first, uint32_t count, Hit& hit) const {
+[[gnu::always_inline]] inline bool TriangleBlocks::intersect(const BlockRay& r, uint32_t first,
+                                                             uint32_t count, Hit& hit) const {
   using namespace block_detail;
   bool found = false;
   uint32_t b = first;
