@@ -175,6 +175,15 @@ unsigned slots(const CompressedNode& n) {
   return n.valid;
 }
 
+/// Lanes that hold a leaf (a non-zero count).
+template <class Node>
+unsigned leaf_lanes(const Node& n) {
+  unsigned m = 0;
+  for (int i = 0; i < int(sizeof(n.count) / sizeof(n.count[0])); ++i)
+    m |= unsigned(n.count[i] != 0) << i;
+  return m;
+}
+
 /// A deferred child: its (child, count) payload and entry distance.
 struct StackEntry {
   uint32_t child, count;
@@ -377,11 +386,20 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       unsigned mask = mask_le(near, far) & slots(n);
       if (mask == 0) goto pop;
       if constexpr (kAnyHit) {
-        // Any hit ends the query, so order does not matter: go to the first child hit, defer
-        // the others (their distance is irrelevant: hit.t never shrinks before the end).
-        const int i0 = std::countr_zero(mask);
-        for (mask &= mask - 1; mask; mask &= mask - 1) {
-          const int i = std::countr_zero(mask);
+        // Any hit ends the query, so distances do not matter (hit.t never shrinks before the
+        // end). Leaves first: a leaf hit ends the query with no further node fetched, so the
+        // first leaf child hit is tested now and the other leaves are popped before the inner
+        // children (pushed last, taken first).
+        const unsigned leaves = mask & leaf_lanes(n);
+        const int i0 = std::countr_zero(leaves ? leaves : mask);
+        mask &= ~(1u << i0);
+        for (unsigned m = mask & ~leaves; m; m &= m - 1) {
+          const int i = std::countr_zero(m);
+          stack[sp++] = {n.child[i], n.count[i], 0.0f};
+          prefetch_child(n.child[i], n.count[i]);
+        }
+        for (unsigned m = mask & leaves; m; m &= m - 1) {
+          const int i = std::countr_zero(m);
           stack[sp++] = {n.child[i], n.count[i], 0.0f};
           prefetch_child(n.child[i], n.count[i]);
         }
