@@ -11,6 +11,7 @@
 #include "penumbra/accel/build/bvh_split.h"
 #include "penumbra/accel/bvh.h"
 #include "penumbra/accel/registry.h"
+#include "penumbra/accel/traversal_cost.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
@@ -337,6 +338,59 @@ TEST(PrimRefs, TriangleSetsGetTheBoxesOfPrimBounds) {
   EXPECT_GT(skipped, 100u);  // the hostile values did reach the path
   EXPECT_EQ(refs.bounds, bounds);
   EXPECT_EQ(refs.centroid_bounds, centroids);
+}
+
+// order=octant lays out each wide node's children so that a ray meets first the child that lies
+// farthest back along its octant's diagonal. Small tetrahedra at the eight corners of a box (a
+// leaf each: the root's eight children), and rays
+// along the eight diagonals from outside (nudged off the edges, where ties would let the
+// two orders return different triangles at one t): the first one on the way holds the hit, so a
+// correct layout visits as few nodes as the nearest-first order (the far one is culled at the pop),
+// and one with the diagonal's sign wrong visits the far one first.
+TEST(WideBvh, OctantOrderMeetsTheNearChildFirstOnTheDiagonals) {
+  TriangleMesh m;
+  for (int c = 0; c < 8; ++c) {
+    const Vec3 centre{c & 1 ? 1.0f : -1.0f, c & 2 ? 1.0f : -1.0f, c & 4 ? 1.0f : -1.0f};
+    const auto base = static_cast<uint32_t>(m.positions.size());
+    for (const Vec3 v : {Vec3{1, 1, 1}, Vec3{1, -1, -1}, Vec3{-1, 1, -1}, Vec3{-1, -1, 1}})
+      m.positions.push_back(centre + v * 0.15f);
+    for (uint32_t k : {0u, 1u, 2u, 0u, 3u, 1u, 0u, 2u, 3u, 1u, 3u, 2u})
+      m.indices.push_back(base + k);
+  }
+  PrimitiveSet prims;
+  prims.add_mesh(m, Transform(), 0);
+  auto nearest = make_accelerator("bvh");
+  auto octant = make_accelerator("bvh:order=octant");
+  nearest->build(prims);
+  octant->build(prims);
+  // The diagonals, and the lines along each axis through two neighbouring corners (tilted a
+  // little into every octant), both ways: a sign wrong on any one axis meets the far one first.
+  std::vector<Ray> rays;
+  for (int o = 0; o < 8; ++o) {
+    const Vec3 d{o & 1 ? -1.0f : 1.0f, o & 2 ? -1.0f : 1.0f, o & 4 ? -1.0f : 1.0f};
+    Ray r;
+    r.o = d * -5.0f + Vec3{0.031f, -0.017f, 0.023f}, r.d = d;  // off the edges through the centres
+    rays.push_back(r);
+    for (int a = 0; a < 3; ++a) {
+      Vec3 along = d * 0.002f, start = d * -1.0f;  // through the corner behind, along axis a
+      along[a] = d[a], start[a] = -5.0f * d[a];
+      r.o = start + Vec3{0.021f, -0.013f, 0.017f}, r.d = along;
+      rays.push_back(r);
+    }
+  }
+  for (const Ray& r : rays) {
+    const int o = int(&r - rays.data());
+    Hit a, b;
+    TraversalCost ca, cb;
+    ASSERT_TRUE(nearest->intersect_cost(r, a, ca)) << o;
+    ASSERT_TRUE(octant->intersect_cost(r, b, cb)) << o;
+    EXPECT_EQ(a.prim, b.prim) << o;
+    EXPECT_EQ(a.t, b.t) << o;
+    EXPECT_LT(a.t, 4.5f) << o;  // the near tetrahedron (its centre lies at t = 4)
+    EXPECT_EQ(cb.nodes, ca.nodes) << "octant " << o;
+  }
+  EXPECT_THROW(make_accelerator("bvh4:order=octant"), Error);
+  EXPECT_THROW(make_accelerator("bvh:order=random"), Error);
 }
 
 }  // namespace

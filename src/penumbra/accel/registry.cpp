@@ -59,7 +59,8 @@ const Registry<Factory>& registry() {
        "as extra references for large triangles, F in [0, 4]), spatial=1 (SBVH spatial splits: "
        "up to F x the triangles as extra references, F in [0, 4], binned builds of static "
        "triangles; 0 turns them off), alpha=0.001 (tried where the object split's children "
-       "overlap by more than this share of the root's area)",
+       "overlap by more than this share of the root's area), order=distance|octant (8-wide: "
+       "closest-hit rays visit children nearest first, or in their octant's order)",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
       {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},
@@ -69,6 +70,9 @@ const Registry<Factory>& registry() {
        create_bvh},
       {"bvh:collapse=greedy",
        "bvh collapsed from the binary tree greedily (largest-area child opened first)",
+       create_bvh},
+      {"bvh:order=octant",
+       "bvh whose closest-hit rays visit children in their octant's order, not by distance",
        create_bvh},
       {"bvh:spatial=0", "bvh without spatial splits (object splits only, one reference per "
        "triangle)", create_bvh},

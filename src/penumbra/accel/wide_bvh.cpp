@@ -50,9 +50,11 @@ using WideNodeArray = std::vector<WideNode<W>, ArrayAllocator<WideNode<W>>>;
 template <int W>
 class Collapser {
  public:
-  /// Collapses greedily, or as `plan` says when given.
-  Collapser(const BvhNodeArray& bin, WideNodeArray<W>& out, const SahCollapse* plan)
-      : bin_(bin), out_(out), plan_(plan) {}
+  /// Collapses greedily, or as `plan` says when given; with `octant_slots`, children take the
+  /// slots of the octant order (octant_slots()).
+  Collapser(const BvhNodeArray& bin, WideNodeArray<W>& out, const SahCollapse* plan,
+            bool octant_slots = false)
+      : bin_(bin), out_(out), plan_(plan), octant_slots_(octant_slots) {}
 
   /// Emits the wide node for binary inner node `b`; returns its index.
   uint32_t emit(uint32_t b, size_t depth) {
@@ -60,6 +62,9 @@ class Collapser {
     const int n = gather(b, kids);
     const auto me = static_cast<uint32_t>(out_.size());
     out_.push_back(empty_node());
+    int slot[W];
+    for (int i = 0; i < W; ++i) slot[i] = i;
+    if (octant_slots_) octant_slots(kids, n, slot);
     for (int i = 0; i < n; ++i) {
       const BvhNode& k = bin_[kids[i]];
       uint32_t child = k.index;
@@ -70,9 +75,9 @@ class Collapser {
         child = emit(kids[i], depth + 1);
       }
       WideNode<W>& node = out_[me];  // emit() may have reallocated
-      for (int r = 0; r < 6; ++r) node.box[r][i] = k.box[r];
-      node.child[i] = child;
-      node.count[i] = k.count;
+      for (int r = 0; r < 6; ++r) node.box[r][slot[i]] = k.box[r];
+      node.child[slot[i]] = child;
+      node.count[slot[i]] = k.count;
     }
     return me;
   }
@@ -113,6 +118,39 @@ class Collapser {
     return n;
   }
 
+  /// Slots for the octant order of the traversal: a ray whose direction has the signs of
+  /// octant o (bit a set where component a is negative) visits slots in the order o, o ^ 1,
+  /// o ^ 2, ..., so slot s should hold the child met first by rays of octant s: the one whose
+  /// centre lies farthest back along that octant's diagonal. Pairs (child, slot) are taken in
+  /// order of that cost, least first, each child and slot once (a greedy assignment, as the
+  /// auction of Ylitie, Karras & Laine 2017, section 3.2, approximates the best one).
+  void octant_slots(const uint32_t* kids, int n, int* slot) const {
+    const Bounds3 parent = [&] {
+      Bounds3 b;
+      for (int i = 0; i < n; ++i) b.extend(bin_[kids[i]].bounds());
+      return b;
+    }();
+    const Vec3 mid = (parent.lo + parent.hi) * 0.5f;
+    float cost[W][W];
+    for (int i = 0; i < n; ++i) {
+      const Bounds3 b = bin_[kids[i]].bounds();
+      const Vec3 c = (b.lo + b.hi) * 0.5f - mid;
+      for (int s = 0; s < W; ++s)
+        cost[i][s] = ((s & 1) ? -c.x : c.x) + ((s & 2) ? -c.y : c.y) + ((s & 4) ? -c.z : c.z);
+    }
+    unsigned child_free = (1u << n) - 1, slot_free = (1u << W) - 1;
+    for (int k = 0; k < n; ++k) {
+      int bi = -1, bs = -1;
+      for (int i = 0; i < n; ++i) {
+        if (!(child_free >> i & 1)) continue;
+        for (int s = 0; s < W; ++s)
+          if ((slot_free >> s & 1) && (bi < 0 || cost[i][s] < cost[bi][bs])) bi = i, bs = s;
+      }
+      slot[bi] = bs;
+      child_free &= ~(1u << bi), slot_free &= ~(1u << bs);
+    }
+  }
+
   static WideNode<W> empty_node() {
     WideNode<W> n;
     for (int i = 0; i < W; ++i) {
@@ -125,6 +163,7 @@ class Collapser {
   const BvhNodeArray& bin_;
   WideNodeArray<W>& out_;
   const SahCollapse* plan_;
+  bool octant_slots_;
   size_t leaves_ = 0, max_depth_ = 0;
 };
 
@@ -201,6 +240,13 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
                             params.name(), collapse));
   sah_collapse_ = collapse == "sah";
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
+  const std::string order = params.get_string("order", "distance");
+  if (order != "distance" && order != "octant")
+    throw Error(fmt::format("{}: parameter 'order' must be distance or octant, got '{}'",
+                            params.name(), order));
+  if (order == "octant" && W != 8)
+    throw Error(fmt::format("{}: order=octant needs width 8", params.name()));
+  octant_order_ = order == "octant";
   // Spatial splits are on by default for binned builds (budget 1: at most twice the references).
   const bool binned = params_.method == BvhSplitMethod::kBinned;
   params_.spatial_budget = float(params.get_real("spatial", binned ? 1.0 : 0.0, 0.0, 4.0));
@@ -243,7 +289,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
     std::optional<SahCollapse> plan;
     if (sah_collapse_ && !tree.nodes.empty() && !tree.nodes[0].is_leaf())
       plan.emplace(tree.nodes, W, bp.traversal_cost, bp.block_shift);
-    Collapser<W> collapser(tree.nodes, b.full, plan ? &*plan : nullptr);
+    Collapser<W> collapser(tree.nodes, b.full, plan ? &*plan : nullptr, octant_order_);
     if (!tree.nodes.empty()) {
       // At most one wide node per binary inner node: reserving that bound (only the pages
       // written are touched) and trimming afterwards costs a copy of the wide nodes, where
@@ -350,6 +396,9 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
   const int nx = pr.neg[0], ny = 2 + pr.neg[1], nz = 4 + pr.neg[2];
   const F t0 = F::broadcast(pr.ray.tmin);
   const MaybeBlockRay<kTriangles> block_ray(pr);
+  // Octant order (order=octant, 8 lanes): the ray's octant, bit a set where d[a] < 0.
+  const bool octant = W == 8 && octant_order_;
+  const int oct = pr.neg[0] | pr.neg[1] << 1 | pr.neg[2] << 2;
   // A deferred child will often be visited: start loading its first line (a node's boxes, or a
   // leaf's first block) while the nearer ones are traversed.
   const auto prefetch_child = [&](uint32_t c, uint32_t count) {
@@ -412,6 +461,26 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       mask &= mask - 1;
       if (mask == 0) {  // one child: go there
         child = n.child[i0], count = n.count[i0];
+        continue;
+      }
+      if (octant) {
+        // The ray's octant order (slots laid out by the collapse): the first lane hit in that
+        // order next, the others pushed last-first. The next node does not wait on the
+        // distances, which only go with the deferred lanes for culling at the pop.
+        mask |= 1u << i0;
+        unsigned order = mask;
+        if (oct & 1) order = ((order & 0x55u) << 1) | ((order >> 1) & 0x55u);
+        if (oct & 2) order = ((order & 0x33u) << 2) | ((order >> 2) & 0x33u);
+        if (oct & 4) order = ((order & 0x0fu) << 4) | ((order >> 4) & 0x0fu);
+        const int first = std::countr_zero(order) ^ oct;
+        for (unsigned rest = order & (order - 1); rest;) {
+          const int j = 31 - std::countl_zero(rest);
+          rest &= ~(1u << j);
+          const int i = j ^ oct;
+          stack[sp++] = {n.child[i], n.count[i], dist[i]};
+          prefetch_child(n.child[i], n.count[i]);
+        }
+        child = n.child[first], count = n.count[first];
         continue;
       }
       const int i1 = std::countr_zero(mask);

@@ -8,7 +8,8 @@
 ///
 /// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
 /// collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h, the default, or
-/// largest-area opening); the 8-wide one also nodes=full|compressed (the node layout).
+/// largest-area opening); the 8-wide one also nodes=full|compressed (the node layout) and
+/// order=distance|octant (how closest-hit rays order the children they visit).
 #include <string>
 #include <vector>
 
@@ -50,6 +51,9 @@ class WideBvh final : public Accelerator {
   BvhBuildParams params_;
   bool sah_collapse_ = true;  ///< collapse=sah (default): the SAH-optimal collapse, else greedy
   double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
+  /// order=octant: closest-hit rays visit the children a node's test keeps in the order of the
+  /// ray's octant (slots laid out for it by the collapse) instead of by entry distance.
+  bool octant_order_ = false;
   const PrimitiveSet* prims_ = nullptr;
   std::vector<Node, ArrayAllocator<Node>> nodes_;
   LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle
