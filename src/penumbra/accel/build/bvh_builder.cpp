@@ -208,7 +208,11 @@ class Builder {
     thread_local bool busy = false;
     Local own;
     Local& local = busy ? own : buffer;
-    const bool was_busy = busy;
+    struct Claim {  // marks the buffer taken until the subtree is copied out (or throws)
+      bool& flag;
+      const bool before;
+      ~Claim() { flag = before; }
+    } claim{busy, busy};
     busy = true;
     local.assign(2, BvhNode{});  // the root (its parent's slot, copied out below) and padding
     const Result r = build_local(local, 0, b, e, cap, box, centroids, depth);
@@ -221,7 +225,6 @@ class Builder {
     };
     nodes_[node] = place(local[0]);
     for (uint32_t i = 0; i < extra; ++i) nodes_[base + i] = place(local[2 + i]);
-    busy = was_busy;
     return r;
   }
 
