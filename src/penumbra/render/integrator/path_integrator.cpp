@@ -112,8 +112,11 @@ Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter
   float bsdf_pdf = 0.0f;  // density of the last BSDF-sampled direction
   Vec3 from;              // the vertex it left
   float eta_scale = 1.0f;
+  // One interaction for the whole path: World::intersect writes every field of it at each hit,
+  // and declared in the loop its zero-initialisation (a 144-byte memset call) ran per bounce,
+  // 2.7 % of a Cornell box render in perf.
+  SurfaceInteraction si;
   for (int depth = 0;; ++depth) {
-    SurfaceInteraction si;
     if (!world_.intersect(ray, si, counter)) {
       // Left the scene: the environment's radiance, weighted against light sampling.
       for (const Light* light : world_.infinite_lights()) {
