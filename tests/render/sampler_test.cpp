@@ -145,6 +145,27 @@ TEST(SobolSampler, BatchedValuesMatchTheDefinition) {
   }
 }
 
+#if defined(__AVX2__)
+// The AVX2 lane-wise bit reversal against the scalar one: 0, all ones, every single bit, every
+// byte value in every byte position, and many random words.
+TEST(LowDiscrepancy, LaneWiseBitReversalMatchesTheScalarOne) {
+  std::vector<uint32_t> words = {0u, ~0u, 0x80000001u, 0x0f0f0f0fu, 0xf0f0f0f0u, 0x12345678u};
+  for (int b = 0; b < 32; ++b) words.push_back(1u << b), words.push_back(~(1u << b));
+  for (uint32_t v = 0; v < 256; ++v)
+    for (int pos = 0; pos < 32; pos += 8) words.push_back(v << pos);
+  Pcg32 rng(5);
+  for (int i = 0; i < 100000; ++i) words.push_back(rng.next_u32());
+  while (words.size() % 8) words.push_back(rng.next_u32());
+  for (size_t i = 0; i < words.size(); i += 8) {
+    U32x8 x;
+    for (int k = 0; k < 8; ++k) x[k] = words[i + size_t(k)];
+    const U32x8 r = reverse_bits(x);
+    for (int k = 0; k < 8; ++k)
+      ASSERT_EQ(r[k], reverse_bits(words[i + size_t(k)])) << std::hex << words[i + size_t(k)];
+  }
+}
+#endif
+
 // The concentric map's polynomial sine and cosine against libm over the whole quarter interval:
 // within two float ulps of values near 1 (2.4e-7).
 TEST(Sampling, QuarterSineAndCosineMatchLibm) {

@@ -2,6 +2,9 @@
 /// Building blocks of stratified and low-discrepancy samplers: bit reversal, the (0,2)-sequence,
 /// hash-based Owen scrambling and random permutations without tables.
 #include <cstdint>
+#if defined(__AVX2__)
+#include <immintrin.h>
+#endif
 
 namespace penumbra {
 
@@ -14,6 +17,32 @@ constexpr uint32_t reverse_bits(uint32_t x) {
   x = ((x & 0x55555555u) << 1) | ((x & 0xaaaaaaaau) >> 1);
   return x;
 }
+
+#if defined(__AVX2__)
+/// 8 lanes of 32 bits, in GCC's vector extension (its shifts, products and XORs are lane-wise).
+using U32x8 = uint32_t __attribute__((vector_size(32)));
+
+/// reverse_bits of each of 8 lanes on AVX2: the bits of every byte reversed by two table lookups
+/// of its nibbles (pshufb), then the bytes of every lane by a byte shuffle. Seven instructions
+/// instead of the 23 shifts, masks and ORs that the portable version vectorises to (the Sobol'
+/// sampler reverses three values per dimension).
+inline U32x8 reverse_bits(U32x8 x) {
+  // rev4[i] is i's 4 bits reversed; the low nibble's goes to the top of the byte and vice versa.
+  const __m256i rev_hi = _mm256_setr_epi8(0, 8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15, 0,
+                                          8, 4, 12, 2, 10, 6, 14, 1, 9, 5, 13, 3, 11, 7, 15);
+  const __m256i rev_lo = _mm256_slli_epi16(rev_hi, 4);  // no carry across bytes: values < 16
+  const __m256i nibble = _mm256_set1_epi8(0x0f);
+  const __m256i v = __m256i(x);
+  const __m256i lo = _mm256_and_si256(v, nibble);
+  const __m256i hi = _mm256_and_si256(_mm256_srli_epi16(v, 4), nibble);
+  const __m256i bytes =
+      _mm256_or_si256(_mm256_shuffle_epi8(rev_lo, lo), _mm256_shuffle_epi8(rev_hi, hi));
+  // Per 128-bit half, bytes 3 2 1 0, 7 6 5 4, ...: every 32-bit lane byte-swapped.
+  const __m256i bswap = _mm256_setr_epi8(3, 2, 1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12, 3, 2,
+                                         1, 0, 7, 6, 5, 4, 11, 10, 9, 8, 15, 14, 13, 12);
+  return U32x8(_mm256_shuffle_epi8(bytes, bswap));
+}
+#endif
 
 /// First dimension of the Sobol' sequence (the base-2 van der Corput sequence) as 32-bit fraction.
 constexpr uint32_t sobol_dim0(uint32_t i) {

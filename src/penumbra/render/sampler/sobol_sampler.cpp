@@ -89,6 +89,34 @@ void SobolSampler::fill_batch() {
     __builtin_memcpy(y_, &fy, sizeof y_);
     return;
   }
+#elif defined(__AVX2__)
+  static_assert(kBatch % 8 == 0, "whole 256-bit registers of 32-bit lanes per batch");
+  // The portable loops below, 8 lanes at once, with bit reversals by nibble lookups: the same
+  // values.
+  using F32x8 = float __attribute__((vector_size(32)));
+  using I32x8 = int32_t __attribute__((vector_size(32)));
+  for (uint32_t half = 0; half < kBatch; half += 8) {
+    U32x8 seed_lo, seed_hi, seed_next, idx;
+    for (uint32_t k = 0; k < 8; ++k) {
+      seed_lo[k] = uint32_t(h[half + k]);
+      seed_hi[k] = uint32_t(h[half + k] >> 32);
+      seed_next[k] = uint32_t(h[half + k + 1]);
+    }
+    if (log2_spp_ > 0) {
+      idx = reverse_bits(laine_karras_permutation(U32x8{} + reversed_index_, seed_lo)) >>
+            uint32_t(32 - log2_spp_);
+    } else {
+      for (uint32_t k = 0; k < 8; ++k) idx[k] = shuffled(seed_lo[k]);
+    }
+    const U32x8 vx = reverse_bits(laine_karras_permutation(idx, seed_hi));
+    const U32x8 vy = reverse_bits(laine_karras_permutation(sobol_dim1_reversed(idx), seed_next));
+    // Below 2^24 after the shift: the signed conversion (AVX2 has no unsigned one) is exact.
+    const F32x8 fx = __builtin_convertvector(I32x8(vx >> 8), F32x8) * 0x1p-24f;
+    const F32x8 fy = __builtin_convertvector(I32x8(vy >> 8), F32x8) * 0x1p-24f;
+    __builtin_memcpy(x_ + half, &fx, sizeof fx);
+    __builtin_memcpy(y_ + half, &fy, sizeof fy);
+  }
+  return;
 #endif
   uint32_t idx[kBatch];
   if (log2_spp_ > 0) {

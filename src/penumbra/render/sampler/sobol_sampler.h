@@ -39,7 +39,9 @@ class SobolSampler final : public Sampler {
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(*this); }
 
  private:
-  /// Dimensions computed at once: most paths need fewer than two batches.
+  /// Dimensions computed at once: most paths need fewer than two batches. (Batches of 8, AVX2's
+  /// width, would waste fewer values, as a Cornell box path takes 5 + 6 per vertex dimensions,
+  /// but measured 2 % slower in paired renders.)
   static constexpr uint32_t kBatch = 16;
 
   /// The batch slot of the next dimension, computing the next batch when it is not there yet.
