@@ -16,9 +16,10 @@ namespace penumbra {
 /// diffuse sampling.
 inline void sin_cos_quarter(float a, float& s, float& c) {
   const float a2 = a * a;
-  s = a * (1.0f + a2 * (-1.0f / 6 + a2 * (1.0f / 120 + a2 * (-1.0f / 5040 + a2 * (1.0f / 362880)))));
-  c = 1.0f + a2 * (-0.5f + a2 * (1.0f / 24 + a2 * (-1.0f / 720 + a2 * (1.0f / 40320 +
-                                                                        a2 * (-1.0f / 3628800)))));
+  s = a *
+      (1.0f + a2 * (-1.0f / 6 + a2 * (1.0f / 120 + a2 * (-1.0f / 5040 + a2 * (1.0f / 362880)))));
+  c = 1.0f + a2 * (-0.5f + a2 * (1.0f / 24 + a2 * (-1.0f / 720 +
+                                                   a2 * (1.0f / 40320 + a2 * (-1.0f / 3628800)))));
 }
 
 /// Concentric map of [0,1)^2 to the unit disk (Shirley, Chiu 1997, "A Low Distortion Map Between
@@ -28,14 +29,14 @@ inline Vec2 sample_concentric_disk(Vec2 u) {
   if (ox == 0.0f && oy == 0.0f) return {0, 0};
   constexpr float kPi4 = std::numbers::pi_v<float> / 4.0f;
   // The angle is pi/4 (oy / ox), or pi/2 - pi/4 (ox / oy) with sine and cosine swapped, so only
-  // angles in [-pi/4, pi/4] are evaluated.
+  // angles in [-pi/4, pi/4] are evaluated. Both cases by selects rather than a branch: which
+  // coordinate is larger is as unpredictable as u (the same operations, so the same bits).
+  const bool x_major = std::fabs(ox) > std::fabs(oy);
+  const float r = x_major ? ox : oy, q = x_major ? oy : ox;
   float s, c;
-  if (std::fabs(ox) > std::fabs(oy)) {
-    sin_cos_quarter(kPi4 * (oy / ox), s, c);
-    return {ox * c, ox * s};
-  }
-  sin_cos_quarter(kPi4 * (ox / oy), s, c);
-  return {oy * s, oy * c};
+  sin_cos_quarter(kPi4 * (q / r), s, c);
+  const float rc = r * c, rs = r * s;
+  return {x_major ? rc : rs, x_major ? rs : rc};
 }
 
 /// Cosine-weighted direction on the +z hemisphere (Malley's method); pdf = cos(theta) / pi.
@@ -67,8 +68,8 @@ inline Vec3 sample_disc_origin(Vec3 center, float radius, Vec3 w, Vec2 u) {
 }
 
 /// Power heuristic with exponent 2 (Veach, Guibas 1995, "Optimally Combining Sampling Techniques
-/// for Monte Carlo Rendering"): the weight of a sample drawn by the strategy of density f_pdf (times
-/// its sample count nf) against the strategy of density g_pdf (times ng).
+/// for Monte Carlo Rendering"): the weight of a sample drawn by the strategy of density f_pdf
+/// (times its sample count nf) against the strategy of density g_pdf (times ng).
 inline float power_heuristic(float nf, float f_pdf, float ng, float g_pdf) {
   const float f = nf * f_pdf, g = ng * g_pdf;
   if (std::isinf(f * f)) return 1.0f;
