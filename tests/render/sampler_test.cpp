@@ -80,8 +80,9 @@ TEST(LowDiscrepancy, SobolDim1ReversedIsTheBitReversedSecondDimension) {
 }
 
 /// The Sobol' sampler's values by their definition, one dimension at a time (the sampler
-/// computes them in batches): dimension d (from 1) has hash h_d; get_1d scrambles the first
-/// Sobol' dimension of the index shuffled by h_d, get_2d adds the second scrambled by h_(d+1).
+/// computes them in batches): dimension d (from 1) has seeds lo_d and hi_d; get_1d scrambles
+/// (by hi_d) the first Sobol' dimension of the index shuffled by lo_d, get_2d adds the second
+/// scrambled by lo_(d+1).
 class ReferenceSobol {
  public:
   ReferenceSobol(int spp, uint64_t seed) : spp_(spp), seed_(seed) {
@@ -105,7 +106,13 @@ class ReferenceSobol {
   }
 
  private:
-  uint64_t next_hash() { return mix64(pixel_hash_ + uint64_t(++dim_) * 0x9e3779b97f4a7c15ull); }
+  /// The seeds of the next dimension d: lo_d in the low half, hi_d in the high half.
+  uint64_t next_hash() {
+    ++dim_;
+    const uint32_t lo = mix32(uint32_t(pixel_hash_) + dim_ * 0x9e3779b9u);
+    const uint32_t hi = mix32(uint32_t(pixel_hash_ >> 32) + dim_ * 0x9e3779b9u);
+    return uint64_t(hi) << 32 | lo;
+  }
   uint32_t shuffled(uint32_t seed) const {
     if (log2_spp_ == 0) return 0;
     if (log2_spp_ > 0) {

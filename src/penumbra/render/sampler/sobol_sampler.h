@@ -12,12 +12,14 @@ namespace penumbra {
 /// points of a pixel form a (0,m,2)-net in each 2D projection: one point in every elementary
 /// interval of area 1/spp. The random order is a nested uniform scramble of the index when spp is
 /// a power of two (Burley 2020, section 4: a few integer operations) and Kensler's permutation
-/// otherwise; the per-dimension seeds come from one 64-bit mix of a per-pixel hash.
+/// otherwise; the per-dimension seeds are 32-bit mixes of the halves of a per-pixel hash.
 ///
-/// Dimension d (counted from 1 in the order of the calls; get_2d takes two) has the 64-bit hash
-/// h_d: get_1d at d returns the scrambled first Sobol' dimension of the index shuffled by h_d's
-/// low half, scrambled by its high half; get_2d at d pairs it with the second Sobol' dimension
-/// of the same index, scrambled by h_(d+1)'s low half. The values are computed kBatch dimensions
+/// With the pixel sample's hash P = hash_combine(seed, (py << 32) | px), P_lo and P_hi its low and
+/// high 32 bits and G = 0x9e3779b9, dimension d (counted from 1 in the order of the calls;
+/// get_2d takes two) has the seeds lo_d = mix32(P_lo + d G) and hi_d = mix32(P_hi + d G) (32-bit
+/// arithmetic): get_1d at d returns the scrambled first Sobol' dimension of the index shuffled
+/// by lo_d, scrambled by hi_d; get_2d at d pairs it with the second Sobol' dimension of the same
+/// index, scrambled by lo_(d+1). The values are computed kBatch dimensions
 /// at a time, in loops the compiler vectorises, and handed out by inline, non-virtual calls when
 /// the caller knows the type (the path integrator does): a value costs a few instructions instead
 /// of a chain of dependent multiplications and bit reversals per call.
