@@ -227,7 +227,9 @@ TEST(BvhBuild, BinnedLeafDecisionIsTheSahTerminationTest) {
         };
         visit(visit, 0);
         EXPECT_GT(small, 20u);
-        if (trav < 1.0f) EXPECT_GT(split, 0u) << "cheap traversal splits some small nodes";
+        if (trav < 1.0f) {
+          EXPECT_GT(split, 0u) << "cheap traversal splits some small nodes";
+        }
       }
     }
   }

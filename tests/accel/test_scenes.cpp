@@ -201,7 +201,9 @@ void trace_both(const Accelerator& a, const Accelerator& b, const std::vector<Ra
     a.intersect_cost(ray, ha, cost_a);
     b.intersect_cost(ray, hb, cost_b);
     ASSERT_EQ(ha.valid(), hb.valid());
-    if (ha.valid()) ASSERT_EQ(ha.t, hb.t);
+    if (ha.valid()) {
+      ASSERT_EQ(ha.t, hb.t);
+    }
   }
 }
 
