@@ -23,7 +23,7 @@ using F32x16 = float __attribute__((vector_size(64)));
 /// reverse_bits of 16 lanes: the bits of every byte reversed by one GF(2) affine map (the
 /// matrix with ones on the anti-diagonal), then the bytes of every 32-bit lane by a shuffle. Two
 /// instructions instead of the ten shifts and masks that the portable version vectorises to.
-inline U32x16 reverse_bits16(U32x16 x) {
+inline U32x16 reverse_bits(U32x16 x) {
   const __m512i bits =
       _mm512_gf2p8affine_epi64_epi8(__m512i(x), _mm512_set1_epi64(0x8040201008040201ll), 0);
   // Per 128-bit lane, bytes 3 2 1 0, 7 6 5 4, ...; as 32-bit words, little-endian.
@@ -31,6 +31,35 @@ inline U32x16 reverse_bits16(U32x16 x) {
   return U32x16(_mm512_shuffle_epi8(bits, bswap));
 }
 
+#endif
+
+#if defined(PENUMBRA_SOBOL_GFNI) || defined(__AVX2__)
+/// The batch's values for the dimensions in the lanes of `d` (U: 32-bit lanes; I and F: int32
+/// and float vectors of as many lanes), written to x and y: each lane's seeds, its shuffled index
+/// and its two scrambled Sobol' dimensions, as the scalar loop of fill_batch computes them.
+/// `shuffled(seed)` gives the index when spp is not a power of two. One body for the 16-lane
+/// (AVX-512 with GFNI) and the 8-lane (AVX2) batches, which differ in reverse_bits.
+template <class U, class I, class F, class Shuffled>
+void sobol_lanes(U d, uint32_t lo_key, uint32_t hi_key, int log2_spp, uint32_t reversed_index,
+                 const Shuffled& shuffled, float* x, float* y) {
+  const U seed_lo = mix32(lo_key + d * kGolden32);
+  const U seed_hi = mix32(hi_key + d * kGolden32);
+  const U seed_next = mix32(lo_key + (d + 1u) * kGolden32);
+  U idx;
+  if (log2_spp > 0) {
+    idx = reverse_bits(laine_karras_permutation(U{} + reversed_index, seed_lo)) >>
+          uint32_t(32 - log2_spp);
+  } else {
+    for (int k = 0; k < int(sizeof(U) / 4); ++k) idx[k] = shuffled(seed_lo[k]);
+  }
+  const U vx = reverse_bits(laine_karras_permutation(idx, seed_hi));
+  const U vy = reverse_bits(laine_karras_permutation(sobol_dim1_reversed(idx), seed_next));
+  // Below 2^24 after the shift: the signed conversion (AVX2 has no unsigned one) is exact.
+  const F fx = __builtin_convertvector(I(vx >> 8), F) * 0x1p-24f;
+  const F fy = __builtin_convertvector(I(vy >> 8), F) * 0x1p-24f;
+  __builtin_memcpy(x, &fx, sizeof fx);
+  __builtin_memcpy(y, &fy, sizeof fy);
+}
 #endif
 }  // namespace
 
@@ -67,55 +96,27 @@ void SobolSampler::fill_batch() {
   // Per slot the pixel's spp points in a per-dimension random order, so dimensions do not
   // correlate; the set itself (the first spp points, a (0,m,2)-net when spp = 2^m) is the same in
   // every order.
+#if defined(PENUMBRA_SOBOL_GFNI) || defined(__AVX2__)
+  const auto shuffled_lane = [this](uint32_t seed) { return shuffled(seed); };
+#endif
 #ifdef PENUMBRA_SOBOL_GFNI
   static_assert(kBatch == 16, "one 512-bit register of 32-bit lanes per batch");
-  // The portable loops below, 16 lanes at once, with bit reversals by GFNI: the same values.
-  {
-    const U32x16 d = base_ + U32x16{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-    const U32x16 seed_lo = mix32(lo_key + d * kGolden32);
-    const U32x16 seed_hi = mix32(hi_key + d * kGolden32);
-    const U32x16 seed_next = mix32(lo_key + (d + 1u) * kGolden32);
-    U32x16 idx;
-    if (log2_spp_ > 0) {
-      idx = reverse_bits16(laine_karras_permutation(U32x16{} + reversed_index_, seed_lo)) >>
-            uint32_t(32 - log2_spp_);
-    } else {
-      for (uint32_t k = 0; k < kBatch; ++k) idx[k] = shuffled(seed_lo[k]);
-    }
-    const U32x16 vx = reverse_bits16(laine_karras_permutation(idx, seed_hi));
-    const U32x16 vy = reverse_bits16(laine_karras_permutation(sobol_dim1_reversed(idx), seed_next));
-    const F32x16 fx = __builtin_convertvector(vx >> 8, F32x16) * 0x1p-24f;
-    const F32x16 fy = __builtin_convertvector(vy >> 8, F32x16) * 0x1p-24f;
-    __builtin_memcpy(x_, &fx, sizeof x_);
-    __builtin_memcpy(y_, &fy, sizeof y_);
-    return;
-  }
+  // The scalar loops below, 16 lanes at once, with bit reversals by GFNI: the same values.
+  using I32x16 = int32_t __attribute__((vector_size(64)));
+  sobol_lanes<U32x16, I32x16, F32x16>(
+      base_ + U32x16{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15}, lo_key, hi_key,
+      log2_spp_, reversed_index_, shuffled_lane, x_, y_);
+  return;
 #elif defined(__AVX2__)
   static_assert(kBatch % 8 == 0, "whole 256-bit registers of 32-bit lanes per batch");
-  // The portable loops below, 8 lanes at once, with bit reversals by nibble lookups: the same
+  // The scalar loops below, 8 lanes at once, with bit reversals by nibble lookups: the same
   // values.
   using F32x8 = float __attribute__((vector_size(32)));
   using I32x8 = int32_t __attribute__((vector_size(32)));
-  for (uint32_t half = 0; half < kBatch; half += 8) {
-    const U32x8 d = base_ + half + U32x8{0, 1, 2, 3, 4, 5, 6, 7};
-    const U32x8 seed_lo = mix32(lo_key + d * kGolden32);
-    const U32x8 seed_hi = mix32(hi_key + d * kGolden32);
-    const U32x8 seed_next = mix32(lo_key + (d + 1u) * kGolden32);
-    U32x8 idx;
-    if (log2_spp_ > 0) {
-      idx = reverse_bits(laine_karras_permutation(U32x8{} + reversed_index_, seed_lo)) >>
-            uint32_t(32 - log2_spp_);
-    } else {
-      for (uint32_t k = 0; k < 8; ++k) idx[k] = shuffled(seed_lo[k]);
-    }
-    const U32x8 vx = reverse_bits(laine_karras_permutation(idx, seed_hi));
-    const U32x8 vy = reverse_bits(laine_karras_permutation(sobol_dim1_reversed(idx), seed_next));
-    // Below 2^24 after the shift: the signed conversion (AVX2 has no unsigned one) is exact.
-    const F32x8 fx = __builtin_convertvector(I32x8(vx >> 8), F32x8) * 0x1p-24f;
-    const F32x8 fy = __builtin_convertvector(I32x8(vy >> 8), F32x8) * 0x1p-24f;
-    __builtin_memcpy(x_ + half, &fx, sizeof fx);
-    __builtin_memcpy(y_ + half, &fy, sizeof fy);
-  }
+  for (uint32_t half = 0; half < kBatch; half += 8)
+    sobol_lanes<U32x8, I32x8, F32x8>(base_ + half + U32x8{0, 1, 2, 3, 4, 5, 6, 7}, lo_key, hi_key,
+                                     log2_spp_, reversed_index_, shuffled_lane, x_ + half,
+                                     y_ + half);
   return;
 #endif
   uint32_t lo[kBatch + 1], hi[kBatch], idx[kBatch];
