@@ -64,7 +64,7 @@ class Collapser {
     out_.push_back(empty_node());
     int slot[W];
     for (int i = 0; i < W; ++i) slot[i] = i;
-    if (octant_slots_) octant_slots(kids, n, slot);
+    if (octant_slots_) octant_slots(bin_[b].bounds(), kids, n, slot);
     for (int i = 0; i < n; ++i) {
       const BvhNode& k = bin_[kids[i]];
       uint32_t child = k.index;
@@ -123,13 +123,9 @@ class Collapser {
   /// o ^ 2, ..., so slot s should hold the child met first by rays of octant s: the one whose
   /// centre lies farthest back along that octant's diagonal. Pairs (child, slot) are taken in
   /// order of that cost, least first, each child and slot once (a greedy assignment, as the
-  /// auction of Ylitie, Karras & Laine 2017, section 3.2, approximates the best one).
-  void octant_slots(const uint32_t* kids, int n, int* slot) const {
-    const Bounds3 parent = [&] {
-      Bounds3 b;
-      for (int i = 0; i < n; ++i) b.extend(bin_[kids[i]].bounds());
-      return b;
-    }();
+  /// auction of Ylitie, Karras & Laine 2017, section 3.2, approximates the best one). Centres
+  /// are taken relative to the centre of `parent`, the box of the node's binary subtree.
+  void octant_slots(const Bounds3& parent, const uint32_t* kids, int n, int* slot) const {
     const Vec3 mid = (parent.lo + parent.hi) * 0.5f;
     float cost[W][W];
     for (int i = 0; i < n; ++i) {
@@ -442,16 +438,15 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
         const unsigned leaves = mask & leaf_lanes(n);
         const int i0 = std::countr_zero(leaves ? leaves : mask);
         mask &= ~(1u << i0);
-        for (unsigned m = mask & ~leaves; m; m &= m - 1) {
-          const int i = std::countr_zero(m);
-          stack[sp++] = {n.child[i], n.count[i], 0.0f};
-          prefetch_child(n.child[i], n.count[i]);
-        }
-        for (unsigned m = mask & leaves; m; m &= m - 1) {
-          const int i = std::countr_zero(m);
-          stack[sp++] = {n.child[i], n.count[i], 0.0f};
-          prefetch_child(n.child[i], n.count[i]);
-        }
+        const auto defer = [&](unsigned lanes) {
+          for (; lanes; lanes &= lanes - 1) {
+            const int i = std::countr_zero(lanes);
+            stack[sp++] = {n.child[i], n.count[i], 0.0f};
+            prefetch_child(n.child[i], n.count[i]);
+          }
+        };
+        defer(mask & ~leaves);
+        defer(mask & leaves);
         child = n.child[i0], count = n.count[i0];
         continue;
       }
