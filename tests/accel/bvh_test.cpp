@@ -393,5 +393,55 @@ TEST(WideBvh, OctantOrderMeetsTheNearChildFirstOnTheDiagonals) {
   EXPECT_THROW(make_accelerator("bvh:order=random"), Error);
 }
 
+// The default order visits a node's children nearest first, whatever slots they hold and
+// however many the ray enters (two, the sorting networks of three and four, more): k small
+// tetrahedra in a row along x (a leaf each, the root's k children), and a ray along the row from
+// either end that enters every box but hits only the tetrahedron j-th on its way (the others
+// are cut so that the ray misses them: their section under the ray is empty). Nearest first,
+// the traversal visits the root and the j nearest leaves, and culls the rest at the pop: 1 + j
+// nodes. Any other order of the first child or of the deferred ones visits more.
+TEST(WideBvh, DistanceOrderVisitsTwoToEightChildrenNearestFirst) {
+  for (int k = 2; k <= 8; ++k) {
+    for (int j = 1; j <= k; ++j) {
+      for (const float dir : {1.0f, -1.0f}) {
+        TriangleMesh m;
+        for (int c = 0; c < k; ++c) {
+          // Places scrambled along x, so that slots and distances are not in the same order.
+          const int place = c % 2 ? k - 1 - c / 2 : c / 2;   // 0, k-1, 1, k-2, ...
+          const int rank = dir > 0 ? place : k - 1 - place;  // 0: the first on the way
+          const Vec3 centre{float(place) * 2.0f, 0.0f, 0.0f};
+          const auto base = static_cast<uint32_t>(m.positions.size());
+          // The regular tetrahedron (hit by the ray), or one with the same box whose section at
+          // every x lies in y + z <= 0 (missed).
+          const bool hit_here = rank == j - 1;
+          const std::initializer_list<Vec3> hit_shape = {
+              {1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+          const std::initializer_list<Vec3> miss_shape = {
+              {-1, -1, -1}, {1, -1, -1}, {0, 1, -1}, {0, -1, 1}};
+          for (const Vec3 v : hit_here ? hit_shape : miss_shape)
+            m.positions.push_back(centre + v * 0.3f);
+          for (uint32_t i : {0u, 1u, 2u, 0u, 3u, 1u, 0u, 2u, 3u, 1u, 3u, 2u})
+            m.indices.push_back(base + i);
+        }
+        PrimitiveSet prims;
+        prims.add_mesh(m, Transform(), 0);
+        auto bvh = make_accelerator("bvh:leaf=4");  // a leaf per tetrahedron
+        bvh->build(prims);
+        ASSERT_EQ(bvh->stats().max_depth, 1u) << k;  // one node: the leaves are its children
+        ASSERT_EQ(bvh->stats().leaves, size_t(k));
+        Ray r;
+        const float start = dir > 0 ? -3.0f : float(k - 1) * 2.0f + 3.0f;
+        r.o = {start, 0.1f, 0.1f}, r.d = {dir, 0.0f, 0.0f};
+        Hit hit;
+        TraversalCost cost;
+        ASSERT_TRUE(bvh->intersect_cost(r, hit, cost)) << k << " " << j << " " << dir;
+        EXPECT_GT(hit.t, float(j - 1) * 2.0f + 2.0f) << k << " " << j << " " << dir;
+        EXPECT_LT(hit.t, float(j - 1) * 2.0f + 3.0f) << k << " " << j << " " << dir;
+        EXPECT_EQ(cost.nodes, uint64_t(1 + j)) << k << " " << j << " " << dir;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace penumbra::test

@@ -10,6 +10,7 @@
 #include "penumbra/accel/build/presplit.h"
 #include "penumbra/accel/build/wide_collapse.h"
 #include "penumbra/accel/simd.h"
+#include "penumbra/accel/small_sort.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
@@ -377,7 +378,7 @@ void WideBvh<W, Node>::make_blocks(std::span<WideNode<W>> nodes, const Primitive
 }
 
 template <int W, class Node>
-template <bool kAnyHit, bool kTriangles, class Cost>
+template <bool kAnyHit, bool kTriangles, bool kOctant, class Cost>
 bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   using F = FloatW<W>;
   // Per-ray values: origin, 1/d (scaled up for exit distances, Pharr et al., "Physically Based
@@ -393,7 +394,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
   const F t0 = F::broadcast(pr.ray.tmin);
   const MaybeBlockRay<kTriangles> block_ray(pr);
   // Octant order (order=octant, 8 lanes): the ray's octant, bit a set where d[a] < 0.
-  const bool octant = W == 8 && octant_order_;
+  constexpr bool octant = W == 8 && kOctant;
   const int oct = pr.neg[0] | pr.neg[1] << 1 | pr.neg[2] << 2;
   // A deferred child will often be visited: start loading its first line (a node's boxes, or a
   // leaf's first block) while the nearer ones are traversed.
@@ -458,7 +459,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
         child = n.child[i0], count = n.count[i0];
         continue;
       }
-      if (octant) {
+      if constexpr (octant) {
         // The ray's octant order (slots laid out by the collapse): the first lane hit in that
         // order next, the others pushed last-first. The next node does not wait on the
         // distances, which only go with the deferred lanes for culling at the pop.
@@ -481,33 +482,30 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       const int i1 = std::countr_zero(mask);
       mask &= mask - 1;
       if (mask == 0) {  // two: the nearer now, the other later
-        const bool swap = dist[i1] < dist[i0];
-        const int a = swap ? i1 : i0, b = swap ? i0 : i1;
+        // Which is nearer is a coin toss for incoherent rays: selects, not a branch.
+        const bool swap = __builtin_expect_with_probability(dist[i1] < dist[i0], 1, 0.5);
+        const int a = swap ? i1 : i0, b = i0 ^ i1 ^ a;
         stack[sp++] = {n.child[b], n.count[b], dist[b]};
         prefetch_child(n.child[b], n.count[b]);
         child = n.child[a], count = n.count[a];
         continue;
       }
-      // Three or more: push all, sort the new entries farthest first, take the nearest.
-      const int base = sp;
-      stack[sp++] = {n.child[i0], n.count[i0], dist[i0]};
-      stack[sp++] = {n.child[i1], n.count[i1], dist[i1]};
-      prefetch_child(n.child[i0], n.count[i0]);
-      prefetch_child(n.child[i1], n.count[i1]);
-      do {
-        const int i = std::countr_zero(mask);
-        mask &= mask - 1;
+      // Three or more: sort (distance, lane) keys by a network of compare-exchanges (selects,
+      // not branches), push all but the nearest farthest first, take the nearest.
+      uint64_t key[W];
+      int k = 0;
+      for (unsigned m = mask | 1u << i0 | 1u << i1; m; m &= m - 1) {
+        const int i = std::countr_zero(m);
+        key[k++] = distance_key(dist[i], i);
+      }
+      sort_small(key, k);
+      for (int j = k - 1; j > 0; --j) {
+        const int i = key_lane(key[j]);
         stack[sp++] = {n.child[i], n.count[i], dist[i]};
         prefetch_child(n.child[i], n.count[i]);
-      } while (mask);
-      for (int i = base + 1; i < sp; ++i) {  // insertion sort, descending by distance
-        const StackEntry e = stack[i];
-        int j = i;
-        for (; j > base && stack[j - 1].t < e.t; --j) stack[j] = stack[j - 1];
-        stack[j] = e;
       }
-      --sp;
-      child = stack[sp].child, count = stack[sp].count;
+      const int first = key_lane(key[0]);
+      child = n.child[first], count = n.count[first];
       continue;
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
@@ -534,13 +532,23 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
 }
 
 template <int W, class Node>
+template <class Cost>
+bool WideBvh<W, Node>::closest(const PreparedRay& pr, Hit& hit, Cost cost) const {
+  if (octant_order_)
+    return blocks_.size() ? traverse<false, true, true>(pr, hit, cost)
+                          : traverse<false, false, true>(pr, hit, cost);
+  return blocks_.size() ? traverse<false, true>(pr, hit, cost)
+                        : traverse<false, false>(pr, hit, cost);
+}
+
+template <int W, class Node>
 bool WideBvh<W, Node>::intersect(const Ray& ray, Hit& hit) const {
   hit = Hit{};
   hit.t = ray.tmax;
   if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;
   const PreparedRay pr(ray);
-  return blocks_.size() ? traverse<false, true>(pr, hit) : traverse<false, false>(pr, hit);
+  return closest(pr, hit);
 }
 
 template <int W, class Node>
@@ -549,8 +557,7 @@ bool WideBvh<W, Node>::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& c
   hit.t = ray.tmax;
   if (!traceable(ray) || nodes_.empty()) return false;
   const PreparedRay pr(ray);
-  const CostCounter c{&cost};
-  return blocks_.size() ? traverse<false, true>(pr, hit, c) : traverse<false, false>(pr, hit, c);
+  return closest(pr, hit, CostCounter{&cost});
 }
 
 template <int W, class Node>

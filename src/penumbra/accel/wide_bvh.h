@@ -40,8 +40,12 @@ class WideBvh final : public Accelerator {
   std::span<const Node> nodes() const { return {nodes_.data(), nodes_.size()}; }
 
  private:
-  template <bool kAnyHit, bool kTriangles, class Cost = NoCost>
+  /// kOctant: closest-hit rays visit children in the octant order (order=octant).
+  template <bool kAnyHit, bool kTriangles, bool kOctant = false, class Cost = NoCost>
   bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
+  /// Closest hit of `pr` in the order the tree was built for.
+  template <class Cost = NoCost>
+  bool closest(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
 
   /// Moves the leaves' triangles into blocks and points the leaf children of `nodes` at them.
   void make_blocks(std::span<WideNode<W>> nodes, const PrimitiveSet& prims,
