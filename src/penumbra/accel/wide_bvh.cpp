@@ -211,27 +211,12 @@ unsigned slots(const CompressedNode& n) {
   return n.valid;
 }
 
-/// Lanes that hold a leaf (a non-zero count): one vector compare where the machine has one
-/// (a scalar loop took some 40 instructions per node of an any-hit traversal).
+/// Lanes that hold a leaf (a non-zero count).
 template <class Node>
 unsigned leaf_lanes(const Node& n) {
-  constexpr int kW = int(sizeof(n.count) / sizeof(n.count[0]));
-#if defined(__AVX2__)
-  if constexpr (kW == 8) {
-    const __m256i c = _mm256_load_si256(reinterpret_cast<const __m256i*>(n.count));
-    const __m256i empty = _mm256_cmpeq_epi32(c, _mm256_setzero_si256());
-    return ~unsigned(_mm256_movemask_ps(_mm256_castsi256_ps(empty))) & 0xffu;
-  }
-#endif
-#if defined(__SSE2__)
-  if constexpr (kW == 4) {
-    const __m128i c = _mm_load_si128(reinterpret_cast<const __m128i*>(n.count));
-    const __m128i empty = _mm_cmpeq_epi32(c, _mm_setzero_si128());
-    return ~unsigned(_mm_movemask_ps(_mm_castsi128_ps(empty))) & 0xfu;
-  }
-#endif
   unsigned m = 0;
-  for (int i = 0; i < kW; ++i) m |= unsigned(n.count[i] != 0) << i;
+  for (int i = 0; i < int(sizeof(n.count) / sizeof(n.count[0])); ++i)
+    m |= unsigned(n.count[i] != 0) << i;
   return m;
 }
 
