@@ -490,8 +490,8 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
         child = n.child[a], count = n.count[a];
         continue;
       }
-      // Three or more: sort (distance, lane) keys by a network of compare-exchanges (selects,
-      // not branches), push all but the nearest farthest first, take the nearest.
+      // Three or more: sort (distance, lane) keys (three or four by networks of selects, not
+      // branches: small_sort.h), push all but the nearest farthest first, take the nearest.
       uint64_t key[W];
       int k = 0;
       for (unsigned m = mask | 1u << i0 | 1u << i1; m; m &= m - 1) {
