@@ -86,16 +86,17 @@ TEST(TriangleBlocks, MatchTheScalarTestBitForBit) {
 }
 
 TEST(TriangleBlocks, PaddingLanesAreNeverHit) {
-  // assign() with kNoPrim padding: a ray through where padding "would be" (the origin of the
+  // fill() with kNoPrim padding: a ray through where padding "would be" (the origin of the
   // NaN lanes) hits nothing, and the real lane keeps its id.
   TriangleMesh mesh;
   mesh.positions = {{-1, -1, 1}, {1, -1, 1}, {0, 1, 1}};
   mesh.indices = {0, 1, 2};
   PrimitiveSet prims;
   prims.add_mesh(mesh, Transform(), 0);
-  const uint32_t ids[4] = {kNoPrim, 0, kNoPrim, kNoPrim};
+  const uint32_t ids[2] = {kNoPrim, 0};
   TriangleBlocks blocks;
-  blocks.assign(prims, ids);
+  blocks.resize(1);
+  blocks.fill(0, prims, std::span<const uint32_t>(ids));
   ASSERT_EQ(blocks.size(), 1u);
   Hit hit;
   const PreparedRay hits(Ray{{0, 0, 0}, {0, 0, 1}});

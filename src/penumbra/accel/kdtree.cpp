@@ -111,7 +111,20 @@ void KdTree::build(const PrimitiveSet& prims) {
         refs_.resize((refs_.size() + 3) / 4 * 4, kNoPrim);
         node = KdNode::leaf(first, node.count());
       }
-      blocks_.assign(prims, {refs_.data(), refs_.size()});
+      // Each leaf's blocks from its first reference on (a leaf is one unit: its blocks pair up).
+      std::vector<KdNode> leaves;
+      for (const KdNode& node : nodes_)
+        if (node.is_leaf() && node.count() > 0) leaves.push_back(node);
+      blocks_.resize(refs_.size() / TriangleBlocks::kLanes);
+      parallel_for_range(
+          leaves.size(),
+          [&](size_t begin, size_t end) {
+            for (size_t l = begin; l < end; ++l)
+              blocks_.fill(leaves[l].first() / TriangleBlocks::kLanes, prims,
+                           std::span<const uint32_t>(refs_.data() + leaves[l].first(),
+                                                     leaves[l].count()));
+          },
+          1024);
     } else {
       refs_.assign(tree.refs.begin(), tree.refs.end());
     }

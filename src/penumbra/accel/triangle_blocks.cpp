@@ -1,8 +1,7 @@
 #include "penumbra/accel/triangle_blocks.h"
 
+#include <cstring>
 #include <limits>
-
-#include "penumbra/core/parallel.h"
 
 namespace penumbra {
 
@@ -11,39 +10,44 @@ void TriangleBlocks::resize(size_t blocks) {
   blocks_.resize(blocks);
 }
 
-namespace {
-
-/// Lane `lane` of `blk` = triangle `id`, or padding (NaN vertices) for kNoPrim.
-void set_lane(TriangleBlock& blk, int lane, const PrimitiveSet& prims, uint32_t id) {
+template <class IdAt>
+void TriangleBlocks::write(uint32_t b, int lanes, const PrimitiveSet& prims, IdAt id) {
   constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
-  const Vec3* v = id == kNoPrim ? nullptr : prims.triangle(id);
-  blk.id[lane] = id;
-  for (int k = 0; k < 3; ++k)
-    for (int a = 0; a < 3; ++a) blk.v[k][a][lane] = v ? v[k][a] : kNaN;
+  // Through bytes: a pair's rows run across the two blocks' members.
+  auto* bytes = reinterpret_cast<unsigned char*>(&blocks_[b]);
+  for (int lane = 0; lane < lanes; ++lane) {
+    const uint32_t i = id(lane);
+    const Vec3* v = i == kNoPrim ? nullptr : prims.triangle(i);
+    for (int k = 0; k < 3; ++k)
+      for (int a = 0; a < 3; ++a) {
+        const float x = v ? v[k][a] : kNaN;
+        std::memcpy(bytes + sizeof(float) * size_t((3 * k + a) * lanes + lane), &x, sizeof x);
+      }
+    std::memcpy(bytes + sizeof(float) * size_t(9 * lanes + lane), &i, sizeof i);
+  }
 }
 
-}  // namespace
-
-void TriangleBlocks::assign(const PrimitiveSet& prims, std::span<const uint32_t> ids) {
-  resize(ids.size() / kLanes);
-  parallel_for_range(
-      blocks_.size(),
-      [&](size_t begin, size_t end) {
-        for (size_t b = begin; b < end; ++b)
-          for (int lane = 0; lane < kLanes; ++lane)
-            set_lane(blocks_[b], lane, prims, ids[b * kLanes + size_t(lane)]);
-      },
-      1024);
+template <class IdAt>
+void TriangleBlocks::write_leaf(uint32_t first, uint32_t n, const PrimitiveSet& prims, IdAt id) {
+  // Lanes past n are padding. The same walk as intersect(): pairs first, then an odd block.
+  const auto lane_id = [&](uint32_t i) { return i < n ? id(i) : kNoPrim; };
+  uint32_t b = 0;
+  const uint32_t blocks = blocks_for(n);
+  if constexpr (kPairs)
+    for (; b + 1 < blocks; b += 2)
+      write(first + b, 2 * kLanes, prims, [&](int lane) { return lane_id(b * kLanes + uint32_t(lane)); });
+  for (; b < blocks; ++b)
+    write(first + b, kLanes, prims, [&](int lane) { return lane_id(b * kLanes + uint32_t(lane)); });
 }
 
 void TriangleBlocks::fill(uint32_t first, const PrimitiveSet& prims,
                           std::span<const PrimRef> refs) {
-  const auto n = static_cast<uint32_t>(refs.size());
-  for (uint32_t b = 0; b < blocks_for(n); ++b)
-    for (int lane = 0; lane < kLanes; ++lane) {
-      const uint32_t i = b * kLanes + uint32_t(lane);
-      set_lane(blocks_[first + b], lane, prims, i < n ? refs[i].id : kNoPrim);
-    }
+  write_leaf(first, uint32_t(refs.size()), prims, [&](uint32_t i) { return refs[i].id; });
+}
+
+void TriangleBlocks::fill(uint32_t first, const PrimitiveSet& prims,
+                          std::span<const uint32_t> ids) {
+  write_leaf(first, uint32_t(ids.size()), prims, [&](uint32_t i) { return ids[i]; });
 }
 
 }  // namespace penumbra

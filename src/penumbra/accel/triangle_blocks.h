@@ -40,18 +40,9 @@ using IntOf = decltype(F{} < F{});
 template <class F>
 using DoubleOf = std::conditional_t<sizeof(F) == 16, D4, D8>;
 
-inline F4 load(const float* p) {
-  F4 r;
-  __builtin_memcpy(&r, p, sizeof r);
-  return r;
-}
 /// Lanes of the first four of an eight-lane vector (free: the low half of the register).
 inline F4 low(F8 a) {
   return __builtin_shufflevector(a, a, 0, 1, 2, 3);
-}
-/// Two four-lane vectors side by side.
-inline F8 join(F4 a, F4 b) {
-  return __builtin_shufflevector(a, b, 0, 1, 2, 3, 4, 5, 6, 7);
 }
 inline F8 splat8(float x) {
   return F8{x, x, x, x, x, x, x, x};
@@ -135,29 +126,39 @@ template <bool kBlocks>
 using MaybeBlockRay = std::conditional_t<kBlocks, BlockRay, const PreparedRay&>;
 
 /// Four triangles: vertex coordinates by vertex and axis, one lane per triangle. Unused lanes
-/// carry NaN vertices (never hit) and id 0xffffffff.
-struct alignas(16) TriangleBlock {
+/// carry NaN vertices (never hit) and id 0xffffffff. Where eight-lane vectors are native (AVX),
+/// a leaf's blocks go in pairs, and a pair holds eight triangles in the same form with rows of
+/// eight ([vertex][axis][8 lanes], then the eight ids): each row is one aligned 32-byte load
+/// (the pair starts 32-byte aligned, as every block does) instead of two loads and a shuffle.
+struct alignas(32) TriangleBlock {
   float v[3][3][4];  ///< [vertex][axis][lane]
   uint32_t id[4];    ///< primitive id of each lane
 };
+static_assert(sizeof(TriangleBlock) == 160 && sizeof(TriangleBlock) % 32 == 0);
 
 /// The blocks of every leaf, in the order the leaves were added.
 class TriangleBlocks {
  public:
   /// Triangles per block.
   static constexpr int kLanes = 4;
+  /// True where a leaf's blocks are stored and tested in pairs of eight lanes.
+#if defined(__AVX__)
+  static constexpr bool kPairs = true;
+#else
+  static constexpr bool kPairs = false;
+#endif
   /// Blocks a leaf of `count` triangles takes.
   static constexpr uint32_t blocks_for(uint32_t count) { return (count + kLanes - 1) / kLanes; }
 
   /// Makes room for `blocks` blocks, unwritten (the caller fills them all); forgets earlier
   /// contents.
   void resize(size_t blocks);
-  /// Writes the triangles of `refs` (in order) into the blocks from `first` on, padding the last
-  /// block. Leaves fill disjoint blocks, so they may be filled concurrently.
+  /// Writes one leaf: the triangles of `refs` (in order) into the blocks_for(size) blocks from
+  /// `first` on (pairs as eight-lane blocks where kPairs), padding the last one. Leaves fill
+  /// disjoint blocks, so they may be filled concurrently.
   void fill(uint32_t first, const PrimitiveSet& prims, std::span<const PrimRef> refs);
-  /// Makes one block per four of `ids` (a multiple of four long; kNoPrim marks padding), in
-  /// order, in parallel.
-  void assign(const PrimitiveSet& prims, std::span<const uint32_t> ids);
+  /// The same with primitive ids (kNoPrim marks a padding lane).
+  void fill(uint32_t first, const PrimitiveSet& prims, std::span<const uint32_t> ids);
   /// Memory held.
   size_t bytes() const { return blocks_.capacity() * sizeof(TriangleBlock); }
   /// Number of blocks.
@@ -175,18 +176,33 @@ class TriangleBlocks {
   // Not zeroed when sized: fill() and assign() write every block (a zeroing pass over the tens
   // of megabytes of a million triangles' blocks took a tenth of the BVH build, serially).
   std::vector<TriangleBlock, NoInitArrayAllocator<TriangleBlock>> blocks_;
+
+  /// The words of block `b` on: one block's 40 (36 coordinates, 4 ids), or a pair's 80.
+  const float* words(uint32_t b) const { return blocks_.data()[b].v[0][0]; }
+  /// Writes `lanes` (4 or 8) triangles id(0), id(1), ... from block `b` on.
+  template <class IdAt>
+  void write(uint32_t b, int lanes, const PrimitiveSet& prims, IdAt id);
+  /// Writes a leaf of `n` triangles id(0) .. id(n - 1) from block `first` on.
+  template <class IdAt>
+  void write_leaf(uint32_t first, uint32_t n, const PrimitiveSet& prims, IdAt id);
 };
 
 namespace block_detail {
 
-/// Coordinate `axis` of vertex `k` of the lanes starting at `blk`: one block's four lanes (F4)
-/// or two consecutive blocks' eight (F8).
+/// Coordinate `axis` of vertex `k` of the lanes whose words start at `w`: one block's four
+/// lanes (F4) or a pair's eight (F8), each a row of the block.
 template <class F>
-inline F lanes(const TriangleBlock* blk, int k, int axis) {
-  if constexpr (sizeof(F) == 16)
-    return load(blk[0].v[k][axis]);
-  else
-    return join(load(blk[0].v[k][axis]), load(blk[1].v[k][axis]));
+inline F lanes(const float* w, int k, int axis) {
+  F r;
+  __builtin_memcpy(&r, w + (3 * k + axis) * int(sizeof(F) / 4), sizeof r);
+  return r;
+}
+/// Primitive id of lane i of the lanes whose words start at `w`.
+template <class F>
+inline uint32_t lane_id(const float* w, int i) {
+  uint32_t id;
+  __builtin_memcpy(&id, w + 9 * int(sizeof(F) / 4) + i, sizeof id);
+  return id;
 }
 /// A ray value at the lane count of F.
 template <class F>
@@ -197,11 +213,12 @@ inline F ray_lanes(F8 x) {
     return x;
 }
 
-/// Tests the lanes of F (one block, or two from `blk` on) against `r` on (tmin, hit.t) and
+/// Tests the lanes of F (one block, or a pair, whose words start at `blk`) against `r` on
+/// (tmin, hit.t) and
 /// accepts their hits in lane order, as the scalar loop would; returns whether one was found
 /// (kAnyHit: as soon as one is, leaving `hit` unspecified).
 template <bool kAnyHit, class F>
-[[gnu::always_inline]] inline bool test_lanes(const BlockRay& r, const TriangleBlock* blk, Hit& hit) {
+[[gnu::always_inline]] inline bool test_lanes(const BlockRay& r, const float* blk, Hit& hit) {
   using I = IntOf<F>;
   const int kx = r.kx, ky = r.ky, kz = r.kz;
   const F ox = ray_lanes<F>(r.ox), oy = ray_lanes<F>(r.oy), oz = ray_lanes<F>(r.oz);
@@ -265,7 +282,7 @@ template <bool kAnyHit, class F>
     hit.t = t[i];
     hit.u = V[i] * inv[i];
     hit.v = W[i] * inv[i];
-    hit.prim = blk[i >> 2].id[i & 3];
+    hit.prim = lane_id<F>(blk, i);
     accepted = true;
   }
   return accepted;
@@ -280,16 +297,16 @@ template <bool kAnyHit>
   bool found = false;
   uint32_t b = first;
   const uint32_t end = first + blocks_for(count);
-#if defined(__AVX__)
-  // Two blocks at a time where eight-lane vectors are native.
-  for (; b + 1 < end; b += 2)
-    if (test_lanes<kAnyHit, F8>(r, &blocks_[b], hit)) {
-      if constexpr (kAnyHit) return true;
-      found = true;
-    }
-#endif
+  if constexpr (kPairs) {
+    // A pair of blocks at a time, as eight lanes (the layout write_leaf gave them).
+    for (; b + 1 < end; b += 2)
+      if (test_lanes<kAnyHit, F8>(r, words(b), hit)) {
+        if constexpr (kAnyHit) return true;
+        found = true;
+      }
+  }
   for (; b < end; ++b)
-    if (test_lanes<kAnyHit, F4>(r, &blocks_[b], hit)) {
+    if (test_lanes<kAnyHit, F4>(r, words(b), hit)) {
       if constexpr (kAnyHit) return true;
       found = true;
     }
