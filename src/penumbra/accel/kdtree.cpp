@@ -131,8 +131,8 @@ void KdTree::build(const PrimitiveSet& prims) {
   }
   // Mark the children that are empty leaves, so that the traversal never loads them, and leave
   // those leaves out of the array (22 % of the nodes on spheres-1m): a node whose below child is
-  // left out has its above child next. An inner node keeps its next node (the traversal reads
-  // it for prefetching): when both children are empty, the below one stays.
+  // left out has its above child next. When both children are empty the below one stays, never
+  // loaded, so that every index stored (and prefetched) stays inside the array.
   if (nodes_.size() > 1 && nodes_.size() < (size_t(1) << 28)) {
     const auto empty = [&](size_t c) { return nodes_[c].is_leaf() && nodes_[c].count() == 0; };
     std::vector<bool> drop(nodes_.size(), false);
@@ -204,18 +204,12 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
       const int axis = n.axis();
       const float tp = (n.split() - o[axis]) * inv[axis];
       const uint32_t below = index + 1, above = n.above();
-      // The next node is usually the above child, far away in the array, or the above child of
-      // the below one (a grandchild: the below child is the next node, most often in the line
-      // already loaded), or of the below child's below child. Start loading all three while
-      // deciding: the descent is a chain of dependent loads, and the node array of a large
-      // mesh does not fit in L2 (+6 % on spheres-1m; a third level gained nothing).
+      // The next node is often the above child, far away in the array (the below one is the
+      // next node, most often in the line already loaded): start loading it while deciding.
+      // Loading the below child as well to prefetch the grandchildren (+6 % on spheres-1m's
+      // incoherent rays on an Intel machine) cost more than it hid on the Zen 2 (primary rays
+      // 5-8 % slower on every mesh, incoherent ones equal; docs/accel.md, 2026-12-05 evening).
       __builtin_prefetch(&nodes[above]);
-      const KdNode b = nodes[below];
-      if (!b.is_leaf()) {
-        __builtin_prefetch(&nodes[b.above()]);
-        const KdNode bb = nodes[below + 1];
-        __builtin_prefetch(&nodes[bb.is_leaf() ? below : bb.above()]);
-      }
       const uint32_t first = below ^ ((below ^ above) & neg_mask[axis]);
       const uint32_t second = below ^ above ^ first;
       // Children that are empty leaves are skipped without being loaded.
