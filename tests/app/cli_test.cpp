@@ -121,6 +121,7 @@ TEST_F(CliTest, NumericOptionsAreDecimalFiniteAndInRange) {
       {render + " --checkpoint 0", "--checkpoint: expected a finite number greater than 0"},
       {render + " --target-error nan", "--target-error: expected a finite number greater"},
       {"accel-bench " + scene("meshes/bunny.obj") + " --rays -1", "--rays: expected"},
+      {"accel-bench " + scene("meshes/bunny.obj") + " --image 8", "--image: expected"},
       {"collide " + scene("meshes/bunny.obj") + " --max-print -1", "--max-print: expected"},
       {"bsp2d --random 10 --seed -1", "--seed: expected a decimal integer"},
   };
@@ -168,6 +169,12 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
     EXPECT_EQ(structures, 2u);
     EXPECT_NE(out_.find("Mrays/s"), std::string::npos) << out_;
   }
+  // --image sets the primary rays: 32 x 32 of them.
+  ASSERT_EQ(run("accel-bench " + scene("meshes/bunny.obj") +
+                " --accel bvh --threads 1 --repeat 1 --rays 100 --image 32"),
+            0)
+      << err_;
+  EXPECT_NE(out_.find("rays: 1024 primary (32x32 pinhole)"), std::string::npos) << out_;
   EXPECT_EQ(run("accel-bench " + scene("cornell-box.json") + " --accel brute --rays 100 --json " +
                 path("brute.json")),
             0);

@@ -34,8 +34,6 @@ namespace {
 
 /// Above this many triangles `all` leaves out brute (it would take hours).
 constexpr size_t kBruteLimit = 100'000;
-/// Side of the square primary-ray image.
-constexpr int kImageSide = 1024;
 /// Seed of the incoherent ray set.
 constexpr uint64_t kRaySeed = 0x5eed'acce'1be7ull;
 
@@ -255,6 +253,10 @@ void add_accel_bench_command(CLI::App& app) {
   cmd->add_option("--json", args->json, "Also write the results to this JSON file");
   cmd->add_option("--rays", args->rays, "Incoherent (and occlusion) rays (default 1000000)")
       ->transform(integer_in(1, int64_t{1} << 30));
+  cmd->add_option("--image", args->image,
+                  "Side of the primary rays' square image, whose hits also start the bounce and "
+                  "shadow rays (default 1024; a small one lets a profile see the other rays)")
+      ->transform(integer_in(16, 4096));
   cmd->add_option("--repeat", args->repeat,
                   "Runs per measurement (default 3): build times and rates are medians; each run "
                   "of a structure alternates with Embree's every 131072 rays, and 'x embree' is "
@@ -333,7 +335,7 @@ void run_accel_bench(const AccelBenchArgs& args) {
     if (!is_scene) return read_mesh(args.input, &warnings);
     const SceneDesc desc = load_scene(args.input);
     warnings = desc.warnings;
-    scene_camera = camera_rays(desc, kImageSide);
+    scene_camera = camera_rays(desc, args.image);
     return scene_triangles(desc, emitters);
   }();
   print_warnings(warnings);
@@ -361,7 +363,7 @@ void run_accel_bench(const AccelBenchArgs& args) {
   for (const auto& s : specs) accels.push_back(make_accelerator(s));  // reject bad names first
 
   RaySets rays;
-  rays.primary = primary_rays(prims.bounds(), kImageSide, kImageSide);
+  rays.primary = primary_rays(prims.bounds(), args.image, args.image);
   rays.incoherent = incoherent_rays(prims.bounds(), args.rays, kRaySeed);
   {
     // The path tracer's rays start at the primary hits, found with the default BVH.
@@ -376,7 +378,7 @@ void run_accel_bench(const AccelBenchArgs& args) {
       "rays: {} primary ({}x{} pinhole), {} incoherent (closest hit), the same {} as "
       "occlusion queries with tmax = infinity; {} diffuse bounces and {} shadow rays (to {}) from "
       "the hits of {}\n",
-      rays.primary.size(), kImageSide, kImageSide, rays.incoherent.size(), rays.incoherent.size(),
+      rays.primary.size(), args.image, args.image, rays.incoherent.size(), rays.incoherent.size(),
       rays.path.bounce.size(), rays.path.shadow.size(),
       emitters.empty() ? "a square light above the mesh" : "the scene's emitters",
       scene_camera.empty() ? "the primary rays" : "the scene camera's rays through pixel centres");

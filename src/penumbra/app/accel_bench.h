@@ -17,6 +17,10 @@ struct AccelBenchArgs {
   std::string threads = "1,all";  ///< thread counts to trace with: N,... or "all" (all cores)
   std::string json;               ///< when set, results are also written here as a JSON array
   size_t rays = 1'000'000;        ///< incoherent (and occlusion) rays
+  /// Side of the primary rays' square image (its width for a scene's camera). The path
+  /// tracer's rays start at its hits, so it sets their number too; a small image leaves the
+  /// incoherent rays most of a profile's samples.
+  int image = 1024;
   /// Runs per measurement: rates are medians; with Embree, each run of a structure alternates
   /// with one of Embree's chunk by chunk (131,072 rays), and the ratios are the medians over runs
   /// (robust to the load of a shared machine changing during the benchmark).
