@@ -193,9 +193,10 @@ namespace block_detail {
 /// lanes (F4) or a pair's eight (F8), each a row of the block.
 template <class F>
 inline F lanes(const float* w, int k, int axis) {
-  F r;
-  __builtin_memcpy(&r, w + (3 * k + axis) * int(sizeof(F) / 4), sizeof r);
-  return r;
+  // A plain vector load (the rows are aligned to their size): through memcpy, GCC stored one
+  // row to the stack and loaded it back in the eight-lane test.
+  using Row [[gnu::may_alias]] = F;
+  return *reinterpret_cast<const Row*>(w + (3 * k + axis) * int(sizeof(F) / 4));
 }
 /// Primitive id of lane i of the lanes whose words start at `w`.
 template <class F>
