@@ -120,9 +120,9 @@ void KdTree::build(const PrimitiveSet& prims) {
           leaves.size(),
           [&](size_t begin, size_t end) {
             for (size_t l = begin; l < end; ++l)
-              blocks_.fill(leaves[l].first() / TriangleBlocks::kLanes, prims,
-                           std::span<const uint32_t>(refs_.data() + leaves[l].first(),
-                                                     leaves[l].count()));
+              blocks_.fill(
+                  leaves[l].first() / TriangleBlocks::kLanes, prims,
+                  std::span<const uint32_t>(refs_.data() + leaves[l].first(), leaves[l].count()));
           },
           1024);
     } else {
@@ -208,7 +208,8 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
       // next node, most often in the line already loaded): start loading it while deciding.
       // Loading the below child as well to prefetch the grandchildren (+6 % on spheres-1m's
       // incoherent rays on an Intel machine) cost more than it hid on the Zen 2 (primary rays
-      // 5-8 % slower on every mesh, incoherent ones equal; docs/accel.md, 2026-12-05 evening).
+      // 5-8 % slower on every mesh, incoherent ones equal; docs/accel.md, "Current figures
+      // (2026-12-05, second session)").
       __builtin_prefetch(&nodes[above]);
       const uint32_t first = below ^ ((below ^ above) & neg_mask[axis]);
       const uint32_t second = below ^ above ^ first;

@@ -35,7 +35,8 @@ void TriangleBlocks::write_leaf(uint32_t first, uint32_t n, const PrimitiveSet& 
   const uint32_t blocks = blocks_for(n);
   if constexpr (kPairs)
     for (; b + 1 < blocks; b += 2)
-      write(first + b, 2 * kLanes, prims, [&](int lane) { return lane_id(b * kLanes + uint32_t(lane)); });
+      write(first + b, 2 * kLanes, prims,
+            [&](int lane) { return lane_id(b * kLanes + uint32_t(lane)); });
   for (; b < blocks; ++b)
     write(first + b, kLanes, prims, [&](int lane) { return lane_id(b * kLanes + uint32_t(lane)); });
 }

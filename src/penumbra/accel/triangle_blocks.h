@@ -173,7 +173,7 @@ class TriangleBlocks {
   bool intersect(const BlockRay& r, uint32_t first, uint32_t count, Hit& hit) const;
 
  private:
-  // Not zeroed when sized: fill() and assign() write every block (a zeroing pass over the tens
+  // Not zeroed when sized: the callers fill() every leaf, which writes every block (a zeroing pass over the tens
   // of megabytes of a million triangles' blocks took a tenth of the BVH build, serially).
   std::vector<TriangleBlock, NoInitArrayAllocator<TriangleBlock>> blocks_;
 
@@ -215,9 +215,8 @@ inline F ray_lanes(F8 x) {
 }
 
 /// Tests the lanes of F (one block, or a pair, whose words start at `blk`) against `r` on
-/// (tmin, hit.t) and
-/// accepts their hits in lane order, as the scalar loop would; returns whether one was found
-/// (kAnyHit: as soon as one is, leaving `hit` unspecified).
+/// (tmin, hit.t) and accepts their hits in lane order, as the scalar loop would; returns whether
+/// one was found (kAnyHit: as soon as one is, leaving `hit` unspecified).
 template <bool kAnyHit, class F>
 [[gnu::always_inline]] inline bool test_lanes(const BlockRay& r, const float* blk, Hit& hit) {
   using I = IntOf<F>;
