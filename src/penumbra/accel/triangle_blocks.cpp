@@ -29,16 +29,17 @@ void TriangleBlocks::write(uint32_t b, int lanes, const PrimitiveSet& prims, IdA
 
 template <class IdAt>
 void TriangleBlocks::write_leaf(uint32_t first, uint32_t n, const PrimitiveSet& prims, IdAt id) {
-  // Lanes past n are padding. The same walk as intersect(): pairs first, then an odd block.
-  const auto lane_id = [&](uint32_t i) { return i < n ? id(i) : kNoPrim; };
-  uint32_t b = 0;
+  // Lanes past n are padding. The same walk as intersect(): pairs where kPairs, then an odd
+  // block.
   const uint32_t blocks = blocks_for(n);
-  if constexpr (kPairs)
-    for (; b + 1 < blocks; b += 2)
-      write(first + b, 2 * kLanes, prims,
-            [&](int lane) { return lane_id(b * kLanes + uint32_t(lane)); });
-  for (; b < blocks; ++b)
-    write(first + b, kLanes, prims, [&](int lane) { return lane_id(b * kLanes + uint32_t(lane)); });
+  for (uint32_t b = 0; b < blocks;) {
+    const int lanes = kPairs && b + 1 < blocks ? 2 * kLanes : kLanes;
+    write(first + b, lanes, prims, [&](int lane) {
+      const uint32_t i = b * kLanes + uint32_t(lane);
+      return i < n ? id(i) : kNoPrim;
+    });
+    b += uint32_t(lanes / kLanes);
+  }
 }
 
 void TriangleBlocks::fill(uint32_t first, const PrimitiveSet& prims,
