@@ -3,7 +3,9 @@
 /// Points and directions transform differently; Transform names the operation (point, vector, normal).
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 namespace penumbra {
 
@@ -25,8 +27,20 @@ struct Vec3 {
   constexpr Vec3() = default;
   constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
   constexpr explicit Vec3(float s) : x(s), y(s), z(s) {}
-  constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
-  constexpr float& operator[](int i) { return i == 0 ? x : (i == 1 ? y : z); }
+  /// Component i (0, 1 or 2). At run time an indexed load, not a chain of selects: GCC compiled
+  /// the selects to two branches, and an axis chosen per ray (the watertight test's permutation,
+  /// a split axis) is as unpredictable as the ray (they cost an incoherent ray about two
+  /// mispredictions in the traversal's setup).
+  constexpr float operator[](int i) const {
+    if (std::is_constant_evaluated()) return i == 0 ? x : (i == 1 ? y : z);
+    float v;
+    __builtin_memcpy(&v, reinterpret_cast<const char*>(this) + sizeof(float) * size_t(i), sizeof v);
+    return v;
+  }
+  constexpr float& operator[](int i) {
+    if (std::is_constant_evaluated()) return i == 0 ? x : (i == 1 ? y : z);
+    return *reinterpret_cast<float*>(reinterpret_cast<char*>(this) + sizeof(float) * size_t(i));
+  }
   constexpr Vec3 operator-() const { return {-x, -y, -z}; }
   constexpr Vec3 operator+(Vec3 b) const { return {x + b.x, y + b.y, z + b.z}; }
   constexpr Vec3 operator-(Vec3 b) const { return {x - b.x, y - b.y, z - b.z}; }
@@ -39,6 +53,8 @@ struct Vec3 {
   constexpr Vec3& operator*=(float s) { return *this = *this * s; }
   constexpr bool operator==(const Vec3&) const = default;
 };
+static_assert(std::is_standard_layout_v<Vec3> && sizeof(Vec3) == 3 * sizeof(float),
+              "Vec3::operator[] reads the components as consecutive floats");
 
 constexpr Vec3 operator*(float s, Vec3 v) { return v * s; }
 constexpr float dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
