@@ -485,7 +485,9 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       const int i1 = std::countr_zero(mask);
       mask &= mask - 1;
       if (mask == 0) {  // two: the nearer now, the other later
-        // Which is nearer is a coin toss for incoherent rays: selects, not a branch.
+        // Which is nearer is a coin toss for incoherent rays, yet GCC's compare and branch here
+        // beats a select (forced by integer masks: primary rays -10 %, bounce -4 %): the
+        // predicted branch lets the next node's load start before the distances are compared.
         const bool swap = __builtin_expect_with_probability(dist[i1] < dist[i0], 1, 0.5);
         const int a = swap ? i1 : i0, b = i0 ^ i1 ^ a;
         stack[sp++] = {n.child[b], n.count[b], dist[b]};
