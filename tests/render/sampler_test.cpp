@@ -79,10 +79,11 @@ TEST(LowDiscrepancy, SobolDim1ReversedIsTheBitReversedSecondDimension) {
   }
 }
 
-/// The Sobol' sampler's values by their definition, one dimension at a time (the sampler
-/// computes them in batches): dimension d (from 1) has seeds lo_d and hi_d; get_1d scrambles
-/// (by hi_d) the first Sobol' dimension of the index shuffled by lo_d, get_2d adds the second
-/// scrambled by lo_(d+1).
+/// The Sobol' sampler's values by their definition, one pair at a time (the sampler computes
+/// them in batches): pair s (from 1) has seeds lo_s, hi_s and yk_s; its point is the first Sobol'
+/// dimension of the index shuffled by lo_s, scrambled by hi_s, and the second scrambled by yk_s.
+/// get_2d takes the next pair's point; get_1d takes the second coordinate of the pair the
+/// previous unpaired get_1d opened, else opens the next pair and takes its first.
 class ReferenceSobol {
  public:
   ReferenceSobol(int spp, uint64_t seed) : spp_(spp), seed_(seed) {
@@ -92,26 +93,31 @@ class ReferenceSobol {
   void start(int px, int py, int index) {
     pixel_hash_ = hash_combine(seed_, (uint64_t(uint32_t(py)) << 32) | uint32_t(px));
     index_ = uint32_t(index);
-    dim_ = 0;
+    pair_ = 0;
+    pending_ = false;
   }
   float get_1d() {
-    const uint64_t h = next_hash();
-    return fraction_to_float(owen_scramble(sobol_dim0(shuffled(uint32_t(h))), uint32_t(h >> 32)));
+    if (pending_) {
+      pending_ = false;
+      return pending_y_;
+    }
+    const Vec2 p = next_pair();
+    pending_ = true;
+    pending_y_ = p.y;
+    return p.x;
   }
-  Vec2 get_2d() {
-    const uint64_t h = next_hash(), g = next_hash();
-    const uint32_t i = shuffled(uint32_t(h));
-    return {fraction_to_float(owen_scramble(sobol_dim0(i), uint32_t(h >> 32))),
-            fraction_to_float(owen_scramble(sobol_dim1(i), uint32_t(g)))};
-  }
+  Vec2 get_2d() { return next_pair(); }
 
  private:
-  /// The seeds of the next dimension d: lo_d in the low half, hi_d in the high half.
-  uint64_t next_hash() {
-    ++dim_;
-    const uint32_t lo = mix32(uint32_t(pixel_hash_) + dim_ * 0x9e3779b9u);
-    const uint32_t hi = mix32(uint32_t(pixel_hash_ >> 32) + dim_ * 0x9e3779b9u);
-    return uint64_t(hi) << 32 | lo;
+  Vec2 next_pair() {
+    ++pair_;
+    const uint32_t g = pair_ * 0x9e3779b9u;
+    const uint32_t lo = mix32(uint32_t(pixel_hash_) + g);
+    const uint32_t hi = mix32(uint32_t(pixel_hash_ >> 32) + g);
+    const uint32_t yk = mix32(uint32_t(pixel_hash_ >> 32) + g + 0x6a09e667u);
+    const uint32_t i = shuffled(lo);
+    return {fraction_to_float(owen_scramble(sobol_dim0(i), hi)),
+            fraction_to_float(owen_scramble(sobol_dim1(i), yk))};
   }
   uint32_t shuffled(uint32_t seed) const {
     if (log2_spp_ == 0) return 0;
@@ -123,7 +129,9 @@ class ReferenceSobol {
   }
   int spp_, log2_spp_ = -1;
   uint64_t seed_, pixel_hash_ = 0;
-  uint32_t index_ = 0, dim_ = 0;
+  uint32_t index_ = 0, pair_ = 0;
+  bool pending_ = false;
+  float pending_y_ = 0;
 };
 
 // Bit for bit against the definition, for random sequences of 1D and 2D requests long enough to
@@ -216,6 +224,34 @@ TEST(SobolSampler, EveryDimensionPairIsA0m2Net) {
         for (const Vec2& p : pts) cells.insert(int(p.x * bx) + bx * int(p.y * by));
         EXPECT_EQ(cells.size(), 64u) << "pixel " << pixel << " pair " << pair << " k " << k;
       }
+    }
+}
+
+// A path vertex's draws: a 2D light pair, a 1D lobe number, a 2D BSDF pair and a 1D roulette
+// number. The two 1D numbers share one pair, so across a pixel's 2^m samples they too form a
+// (0,m,2)-net, as do both 2D draws, at every vertex.
+TEST(SobolSampler, TwoOneDimensionalDrawsShareANet) {
+  const auto sampler = make_sampler("sobol", 64, 3);
+  for (int pixel = 0; pixel < 3; ++pixel)
+    for (int vertex = 0; vertex < 4; ++vertex) {
+      std::vector<Vec2> light, bsdf, ones;
+      for (int i = 0; i < 64; ++i) {
+        sampler->start_pixel_sample(pixel, 2, i);
+        for (int v = 0; v <= vertex; ++v) {
+          const Vec2 l = sampler->get_2d();
+          const float uc = sampler->get_1d();
+          const Vec2 b = sampler->get_2d();
+          const float rr = sampler->get_1d();
+          if (v == vertex) light.push_back(l), bsdf.push_back(b), ones.push_back({uc, rr});
+        }
+      }
+      for (const auto* pts : {&light, &bsdf, &ones})
+        for (int k = 0; k <= 6; ++k) {
+          const int bx = 1 << k, by = 1 << (6 - k);
+          std::set<int> cells;
+          for (const Vec2& p : *pts) cells.insert(int(p.x * bx) + bx * int(p.y * by));
+          EXPECT_EQ(cells.size(), 64u) << "pixel " << pixel << " vertex " << vertex << " k " << k;
+        }
     }
 }
 

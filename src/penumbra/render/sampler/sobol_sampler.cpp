@@ -11,8 +11,11 @@
 namespace penumbra {
 
 namespace {
-/// The 32-bit golden ratio, the step between dimensions before mixing.
+/// The 32-bit golden ratio, the step between pairs before mixing.
 constexpr uint32_t kGolden32 = 0x9e3779b9u;
+/// The offset of the second coordinate's scramble seeds from the first's (the fraction of
+/// sqrt(2)): yk_s = hi_(s + j) only for j = 0x6a09e667 / G mod 2^32, about 2 * 10^9 pairs away.
+constexpr uint32_t kSecondKey = 0x6a09e667u;
 
 #ifdef PENUMBRA_SOBOL_GFNI
 /// 16 lanes of 32 bits, in GCC's vector extension (its shifts, products and XORs are lane-wise;
@@ -34,7 +37,7 @@ inline U32x16 reverse_bits(U32x16 x) {
 #endif
 
 #if defined(PENUMBRA_SOBOL_GFNI) || defined(__AVX2__)
-/// The batch's values for the dimensions in the lanes of `d` (U: 32-bit lanes; I and F: int32
+/// The batch's values for the pairs in the lanes of `d` (U: 32-bit lanes; I and F: int32
 /// and float vectors of as many lanes), written to x and y: each lane's seeds, its shuffled index
 /// and its two scrambled Sobol' dimensions, as the scalar loop of fill_batch computes them.
 /// `shuffled(seed)` gives the index when spp is not a power of two. One body for the 16-lane
@@ -44,7 +47,7 @@ void sobol_lanes(U d, uint32_t lo_key, uint32_t hi_key, int log2_spp, uint32_t r
                  const Shuffled& shuffled, float* x, float* y) {
   const U seed_lo = mix32(lo_key + d * kGolden32);
   const U seed_hi = mix32(hi_key + d * kGolden32);
-  const U seed_next = mix32(lo_key + (d + 1u) * kGolden32);
+  const U seed_y = mix32(hi_key + d * kGolden32 + kSecondKey);
   U idx;
   if (log2_spp > 0) {
     idx = reverse_bits(laine_karras_permutation(U{} + reversed_index, seed_lo)) >>
@@ -53,7 +56,7 @@ void sobol_lanes(U d, uint32_t lo_key, uint32_t hi_key, int log2_spp, uint32_t r
     for (int k = 0; k < int(sizeof(U) / 4); ++k) idx[k] = shuffled(seed_lo[k]);
   }
   const U vx = reverse_bits(laine_karras_permutation(idx, seed_hi));
-  const U vy = reverse_bits(laine_karras_permutation(sobol_dim1_reversed(idx), seed_next));
+  const U vy = reverse_bits(laine_karras_permutation(sobol_dim1_reversed(idx), seed_y));
   // Below 2^24 after the shift: the signed conversion (AVX2 has no unsigned one) is exact.
   const F fx = __builtin_convertvector(I(vx >> 8), F) * 0x1p-24f;
   const F fy = __builtin_convertvector(I(vy >> 8), F) * 0x1p-24f;
@@ -71,10 +74,11 @@ SobolSampler::SobolSampler(int spp, uint64_t seed) : spp_(spp), seed_(seed) {
 void SobolSampler::start_pixel_sample(int px, int py, int index) {
   pixel_hash_ = hash_combine(seed_, (uint64_t(uint32_t(py)) << 32) | uint32_t(px));
   index_ = static_cast<uint32_t>(index);
-  // The index as the top m bits of a fraction, bit-reversed once here rather than per dimension.
+  // The index as the top m bits of a fraction, bit-reversed once here rather than per pair.
   reversed_index_ = log2_spp_ > 0 ? reverse_bits(index_ << (32 - log2_spp_)) : 0;
   dim_ = 1;
   base_ = dim_ + kBatch;  // no batch yet
+  has_pending_ = false;
 }
 
 uint32_t SobolSampler::shuffled(uint32_t seed) const {
@@ -89,11 +93,11 @@ uint32_t SobolSampler::shuffled(uint32_t seed) const {
 
 void SobolSampler::fill_batch() {
   base_ = dim_;
-  // The seeds of the batch's dimensions, lo also of the one after (the last slot's y needs it):
-  // 32-bit mixes of the pixel hash's halves, which vectorise without emulated 64-bit products
-  // (one 64-bit mix per dimension was half of this function's time on AVX2).
+  // The seeds of the batch's pairs: 32-bit mixes of the pixel hash's halves, which vectorise
+  // without emulated 64-bit products (one 64-bit mix per dimension was half of this function's
+  // time on AVX2).
   const uint32_t lo_key = uint32_t(pixel_hash_), hi_key = uint32_t(pixel_hash_ >> 32);
-  // Per slot the pixel's spp points in a per-dimension random order, so dimensions do not
+  // Per slot the pixel's spp points in a per-pair random order, so pairs do not
   // correlate; the set itself (the first spp points, a (0,m,2)-net when spp = 2^m) is the same in
   // every order.
 #if defined(PENUMBRA_SOBOL_GFNI) || defined(__AVX2__)
@@ -119,9 +123,11 @@ void SobolSampler::fill_batch() {
                                      y_ + half);
   return;
 #endif
-  uint32_t lo[kBatch + 1], hi[kBatch], idx[kBatch];
-  for (uint32_t k = 0; k <= kBatch; ++k) lo[k] = mix32(lo_key + (base_ + k) * kGolden32);
+  uint32_t lo[kBatch], hi[kBatch], yk[kBatch], idx[kBatch];
+  for (uint32_t k = 0; k < kBatch; ++k) lo[k] = mix32(lo_key + (base_ + k) * kGolden32);
   for (uint32_t k = 0; k < kBatch; ++k) hi[k] = mix32(hi_key + (base_ + k) * kGolden32);
+  for (uint32_t k = 0; k < kBatch; ++k)
+    yk[k] = mix32(hi_key + (base_ + k) * kGolden32 + kSecondKey);
   if (log2_spp_ > 0) {
     const uint32_t shift = 32 - uint32_t(log2_spp_);
     for (uint32_t k = 0; k < kBatch; ++k)
@@ -133,7 +139,7 @@ void SobolSampler::fill_batch() {
   // signed conversion is exact (and vectorises without AVX-512).
   for (uint32_t k = 0; k < kBatch; ++k) {
     const uint32_t vx = owen_scrambled_dim0(idx[k], hi[k]);
-    const uint32_t vy = owen_scrambled_dim1(idx[k], lo[k + 1]);
+    const uint32_t vy = owen_scrambled_dim1(idx[k], yk[k]);
     x_[k] = float(int32_t(vx >> 8)) * 0x1p-24f;
     y_[k] = float(int32_t(vy >> 8)) * 0x1p-24f;
   }
