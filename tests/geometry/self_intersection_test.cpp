@@ -38,6 +38,49 @@ TEST(NextFloat, MatchesNextafterOnEveryKindOfFloat) {
   }
 }
 
+// The branch-free offset against its definition with the library's nextafter, component by
+// component: signed zeros, denormals, the largest floats, infinities and NaN among the points,
+// offsets of every sign (normals with zero components, directions on either side), bit for bit.
+TEST(SelfIntersection, OffsetOriginMatchesNextafterDefinition) {
+  const float specials[] = {0.0f,     -0.0f,    1e-45f,   -1e-45f, 1e-38f,  -1e-38f,
+                            1.0f,     -1.0f,    3.4e38f,  -3.4e38f,
+                            std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity(),
+                            std::numeric_limits<float>::quiet_NaN()};
+  Pcg32 rng(9);
+  const auto pick = [&](bool special) {
+    if (special) return specials[rng.next_bounded(sizeof specials / sizeof specials[0])];
+    return (rng.next_float() - 0.5f) * std::ldexp(1.0f, int(rng.next_bounded(40)) - 20);
+  };
+  const auto same = [](float a, float b) {
+    return std::isnan(a) ? std::isnan(b) : std::bit_cast<uint32_t>(a) == std::bit_cast<uint32_t>(b);
+  };
+  for (int i = 0; i < 1000000; ++i) {
+    const bool sp = (i & 3) == 0;
+    const Vec3 p{pick(sp), pick(sp), pick(sp)};
+    const Vec3 err{std::fabs(pick(false)), std::fabs(pick(false)), std::fabs(pick(false))};
+    Vec3 n{pick(false), pick(false), pick(false)};
+    for (int a = 0; a < 3; ++a)
+      if (rng.next_bounded(3) == 0) n[a] = rng.next_bounded(2) ? 0.0f : -0.0f;
+    const Vec3 w{pick(false), pick(false), pick(false)};
+    // The definition: p moved by +-n (n . err) to the side of w, then one float further along
+    // each component's offset.
+    const float dd = dot(abs(n), err);
+    Vec3 offset = n * dd;
+    if (dot(w, n) < 0.0f) offset = -offset;
+    asm("" : "+m"(offset));  // no fused multiply-add: the sum rounds the rounded product
+    const Vec3 moved = p + offset;
+    const Vec3 got = offset_ray_origin(p, err, n, w);
+    for (int a = 0; a < 3; ++a) {
+      const float want = offset[a] > 0.0f   ? std::nextafter(moved[a], HUGE_VALF)
+                         : offset[a] < 0.0f ? std::nextafter(moved[a], -HUGE_VALF)
+                                            : moved[a];
+      ASSERT_TRUE(same(got[a], want)) << "i " << i << " axis " << a << " p " << p[a] << " offset "
+                                      << offset[a] << " got " << got[a] << " want " << want;
+    }
+  }
+}
+
 // Points exactly on an axis-aligned wall (x = 0, like the Cornell box's green wall) get no offset
 // from their (zero) error bound; the triangle test's own bound on t must reject the re-hit.
 TEST(SelfIntersection, RaysFromAnAxisAlignedWallDoNotHitIt) {
