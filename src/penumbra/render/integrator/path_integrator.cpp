@@ -72,15 +72,11 @@ float PathIntegrator::emission_weight(const Light& light, float bsdf_pdf, Vec3 f
   return power_heuristic(1.0f, bsdf_pdf, 1.0f, light_pdf);
 }
 
-template <class S>
 Rgb PathIntegrator::sample_light(const SurfaceInteraction& si, const Material& m, Vec3 wo,
-                                 float time, S& sampler, RayCounter& counter) const {
+                                 float time, Vec2 u, RayCounter& counter) const {
   // One pair: the light from its first number, whose unused part, stretched back to [0, 1),
   // then places the sample on that light (as Mitsuba 3's sample_emitter_direction reuses it):
   // a dimension less per vertex, and the pair stays stratified over lights and points together.
-  // The values are drawn whether or not they are used, so that every vertex takes the same
-  // dimensions.
-  const Vec2 u = sampler.get_2d();
   // The remainder in a variable of its own: written through a pointer into u.x, then read back
   // with u.y as one 8-byte load, it could not be forwarded from the two stores (a stall).
   float u_rest = u.x;
@@ -139,14 +135,20 @@ Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter
     MaterialScratch scratch;
     const Material& m = si.material->at(si, scratch);  // textures evaluated at the hit
     const Vec3 wo = si.to_local(si.wo);
-    // Next-event estimation at non-specular vertices.
-    if (m.has_non_specular() && !light_sampler_.lights().empty())
-      radiance += beta * sample_light(si, m, wo, ray.time, sampler, counter);
-
-    // The continuation, sampled from the BSDF.
+    // The vertex's numbers in their fixed order: the light pair (drawn where a light is
+    // sampled, whether or not the sample is used, so that every such vertex takes the same
+    // dimensions), the lobe number, the BSDF pair, the roulette number.
+    const bool nee = m.has_non_specular() && !light_sampler_.lights().empty();
+    const Vec2 u_light = nee ? sampler.get_2d() : Vec2{};
     const float uc = sampler.get_1d();
     const Vec2 u = sampler.get_2d();
+    const float u_rr = sampler.get_1d();
+    // The continuation sampled from the BSDF before the light: its chain of dependent
+    // operations (the concentric map's polynomials, a square root) then runs beside the light
+    // sample's set-up instead of after the shadow ray.
     const auto bs = m.sample(wo, uc, u, TransportMode::kRadiance);
+    // Next-event estimation at non-specular vertices.
+    if (nee) radiance += beta * sample_light(si, m, wo, ray.time, u_light, counter);
     if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) break;
     const Vec3 wi = si.to_world(bs->wi);
     beta *= bs->f * (std::fabs(dot(wi, si.ns)) / bs->pdf);
@@ -172,7 +174,6 @@ Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter
     const float rr = rr_exponent_ == 0.5f   ? std::sqrt(r)
                      : rr_exponent_ == 1.0f ? r
                                             : std::pow(r, rr_exponent_);
-    const float u_rr = sampler.get_1d();
     if (depth + 1 >= rr_depth_ && rr < 1.0f) {
       const float q = std::max(0.05f, 1.0f - rr);
       if (u_rr < q) break;

@@ -43,10 +43,10 @@ class PathIntegrator final : public SamplingIntegrator {
   /// per bounce; an indirect call cost more than the batched value it returns).
   template <class S>
   Rgb trace(const Ray& ray, S& sampler, RayCounter& counter) const;
-  /// One light sample's contribution at a non-specular vertex (without the path throughput).
-  template <class S>
-  Rgb sample_light(const SurfaceInteraction& si, const Material& m, Vec3 wo, float time,
-                   S& sampler, RayCounter& counter) const;
+  /// One light sample's contribution at a non-specular vertex (without the path throughput),
+  /// from the vertex's light pair u.
+  Rgb sample_light(const SurfaceInteraction& si, const Material& m, Vec3 wo, float time, Vec2 u,
+                   RayCounter& counter) const;
   /// The MIS weight of emission `light` reached by a BSDF sample of density bsdf_pdf from
   /// `from` in direction wi (hit: the point on an area light).
   float emission_weight(const Light& light, float bsdf_pdf, Vec3 from, Vec3 wi,
