@@ -346,49 +346,50 @@ void World::local_interaction(const PrimitiveSet& prims, const Ray& ray, const H
   const uint32_t id = hit.prim;
   const PrimOrigin& origin = prims.origin(id);
   const ShapeInfo& shape = shapes_[origin.shape];
-  si.t = hit.t;
-  si.prim = id;
-  si.shape = origin.shape;
-  si.material = shape.material;
-  si.wo = normalize(-ray.d);
-  si.uv = {hit.u, hit.v};
+  // Computed in locals and stored once at the end: written into si as they came, the frame was
+  // read back from memory for the next step (si may alias the mesh arrays read in between), and
+  // its fields went out in narrow stores that the caller's wider loads could not be forwarded
+  // from.
+  Vec3 p, p_error, ng;
+  Vec2 uv = {hit.u, hit.v};
+  const Vec3 wo = normalize(-ray.d);
   // The primitive's geometry at the ray's time (its only geometry when it is static).
   switch (prims.kind(id)) {
     case PrimKind::kTriangle: {
       // A static triangle's vertices are read in place: copying them through triangle_at's
       // out-parameter cost a store-to-load forwarding stall per hit.
       Vec3 moved[3];
-      const Vec3* p = prims.triangle(id);
-      if (prims.moving(id)) prims.triangle_at(id, ray.time, moved), p = moved;
+      const Vec3* v = prims.triangle(id);
+      if (prims.moving(id)) prims.triangle_at(id, ray.time, moved), v = moved;
       const float b0 = 1.0f - hit.u - hit.v;
-      si.p = p[0] * b0 + p[1] * hit.u + p[2] * hit.v;
+      p = v[0] * b0 + v[1] * hit.u + v[2] * hit.v;
       // Error of a barycentric combination (pbrt-v3 section 3.9.4).
-      si.p_error = (abs(p[0] * b0) + abs(p[1] * hit.u) + abs(p[2] * hit.v)) * gamma(7);
-      si.ng = normalize(cross(p[1] - p[0], p[2] - p[0]));
+      p_error = (abs(v[0] * b0) + abs(v[1] * hit.u) + abs(v[2] * hit.v)) * gamma(7);
+      ng = normalize(cross(v[1] - v[0], v[2] - v[0]));
       break;
     }
     case PrimKind::kSphere: {
-      const SphereData s = prims.sphere_at(id, ray.time);
-      const Vec3 d = ray.at(hit.t) - s.center;
+      const SphereData sp = prims.sphere_at(id, ray.time);
+      const Vec3 d = ray.at(hit.t) - sp.center;
       // Reproject onto the surface; the error is then a few ulps of p (pbrt-v3 section 3.9.4).
-      si.p = s.center + d * (s.radius / length(d));
-      si.p_error = abs(si.p) * gamma(5);
-      si.ng = normalize(si.p - s.center);
-      const float phi = std::atan2(si.ng.y, si.ng.x);
-      si.uv = {phi * 0.5f * std::numbers::inv_pi_v<float> + 0.5f,
-               std::acos(std::clamp(si.ng.z, -1.0f, 1.0f)) * std::numbers::inv_pi_v<float>};
+      p = sp.center + d * (sp.radius / length(d));
+      p_error = abs(p) * gamma(5);
+      ng = normalize(p - sp.center);
+      const float phi = std::atan2(ng.y, ng.x);
+      uv = {phi * 0.5f * std::numbers::inv_pi_v<float> + 0.5f,
+            std::acos(std::clamp(ng.z, -1.0f, 1.0f)) * std::numbers::inv_pi_v<float>};
       break;
     }
     case PrimKind::kQuad: {
       const QuadData q = prims.quad_at(id, ray.time);
-      si.p = q.p + q.e1 * hit.u + q.e2 * hit.v;
-      si.p_error = (abs(q.p) + abs(q.e1 * hit.u) + abs(q.e2 * hit.v)) * gamma(6);
-      si.ng = normalize(cross(q.e1, q.e2));
+      p = q.p + q.e1 * hit.u + q.e2 * hit.v;
+      p_error = (abs(q.p) + abs(q.e1 * hit.u) + abs(q.e2 * hit.v)) * gamma(6);
+      ng = normalize(cross(q.e1, q.e2));
       break;
     }
   }
-  if (shape.flip_normal) si.ng = -si.ng;
-  si.ns = si.ng;
+  if (shape.flip_normal) ng = -ng;
+  Vec3 ns = ng;
   if (shape.mesh >= 0) {
     // Interpolated shading normal and uvs of the triangle's vertices.
     const TriangleMesh& m = meshes_[size_t(shape.mesh)];
@@ -401,17 +402,28 @@ void World::local_interaction(const PrimitiveSet& prims, const Ray& ray, const H
         const Vec3 n1 = e[idx[0]] * b0 + e[idx[1]] * hit.u + e[idx[2]] * hit.v;
         n = motion_lerp(motion_time(ray.time), n, n1);
       }
-      if (dot(n, n) > 0.0f && is_finite(n)) si.ns = face_forward(normalize(n), si.ng);
+      if (dot(n, n) > 0.0f && is_finite(n)) ns = face_forward(normalize(n), ng);
     }
-    if (!m.uvs.empty()) {
-      const Vec2 uv = m.uvs[idx[0]] * b0 + m.uvs[idx[1]] * hit.u + m.uvs[idx[2]] * hit.v;
-      si.uv = uv;
-    }
+    if (!m.uvs.empty())
+      uv = m.uvs[idx[0]] * b0 + m.uvs[idx[1]] * hit.u + m.uvs[idx[2]] * hit.v;
   }
-  orthonormal_basis(si.ns, si.ss, si.ts);
+  Vec3 ss, ts;
+  orthonormal_basis(ns, ss, ts);
+  si.p = p;
+  si.p_error = p_error;
+  si.ng = ng;
+  si.ns = ns;
+  si.ss = ss;
+  si.ts = ts;
+  si.uv = uv;
+  si.wo = wo;
+  si.t = hit.t;
+  si.prim = id;
+  si.shape = origin.shape;
+  si.material = shape.material;
   // Emission leaves the front side (the geometric normal's) unless the emitter is two-sided.
   si.area_light = shape.area_light;
-  si.emitted = shape.area_light ? shape.area_light->l(si.light_point(), si.wo) : Rgb{};
+  si.emitted = shape.area_light ? shape.area_light->l(LightPoint{p, ng, id}, wo) : Rgb{};
 }
 
 }  // namespace penumbra
