@@ -210,7 +210,10 @@ float AreaLight::prim_pmf(uint32_t prim) const {
   return i < prim_unit_.size() ? pmf_[prim_unit_[i]] * prim_fraction_[i] : 0.0f;
 }
 
-void AreaLight::sample_area(const Unit& unit, Vec2 u, Vec3& q, Vec3& n) const {
+// Inline (only this file calls it): out of line, q and n came back through memory, stored
+// float by float and loaded in pairs, which the store buffer cannot forward.
+[[gnu::always_inline]] inline void AreaLight::sample_area(const Unit& unit, Vec2 u, Vec3& q,
+                                                          Vec3& n) const {
   switch (unit.kind) {
     case UnitKind::kTriangle: {
       // Uniform barycentrics (Shirley 1990 / pbrt's square-root mapping).
