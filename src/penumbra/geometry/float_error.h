@@ -46,6 +46,7 @@ inline float next_float_down(float v) {
 inline Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 n, Vec3 w) {
   using F4 = float __attribute__((vector_size(16)));
   using I4 = int32_t __attribute__((vector_size(16)));
+  using U4 = uint32_t __attribute__((vector_size(16)));
   const float d = dot(abs(n), p_error);
   // d or -d (to the side of w) by its sign bit: -(n d) and n (-d) are the same floats.
   const float s = std::bit_cast<float>(std::bit_cast<uint32_t>(d) ^
@@ -55,14 +56,17 @@ inline Vec3 offset_ray_origin(Vec3 p, Vec3 p_error, Vec3 n, Vec3 w) {
   // into the sum (an FMA would move some points by an ulp).
   asm("" : "+x"(offset));
   const F4 po = F4{p.x, p.y, p.z, 0.0f} + offset;
-  const I4 bits = (I4)po;
+  // The bit patterns as unsigned lanes: every lane computes both successors, and for the lanes
+  // that keep their value (a zero's pattern minus one, NaN's plus one) signed lanes would
+  // overflow.
+  const U4 bits = (U4)po;
   constexpr float kInf = std::numeric_limits<float>::infinity();
   // Away from zero on the side of its sign: +1 on the bit pattern of a positive float moves it
   // up, of a negative one down. Zero (either sign) goes to the smallest denormal of the side.
-  const I4 toward_up = po > 0.0f ? I4{} + 1 : I4{} - 1;
+  const U4 toward_up = po > 0.0f ? U4{} + 1u : U4{} - 1u;
   const I4 is_zero = po == 0.0f;
-  const I4 up = is_zero ? I4{} + 1 : bits + toward_up;
-  const I4 down = is_zero ? I4{} + int32_t(0x80000001u) : bits - toward_up;
+  const U4 up = is_zero ? U4{} + 1u : bits + toward_up;
+  const U4 down = is_zero ? U4{} + 0x80000001u : bits - toward_up;
   // +infinity has no float above it, -infinity none below; NaN stays (the comparisons fail).
   const I4 move_up = (offset > 0.0f) & (po < kInf);
   const I4 move_down = (offset < 0.0f) & (po > -kInf);
