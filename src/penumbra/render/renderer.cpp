@@ -30,22 +30,27 @@ struct Totals {
 void render_tile(RenderJob& job, const SamplingIntegrator& integrator, int x0, int y0, int x1,
                  int y1, int first, int count, Totals& totals) {
   const uint64_t start = tick_count();
-  auto s = job.sampler->clone();
   RayCounter counter;
-  Film& film = *job.film;
-  for (int y = y0; y < y1; ++y)
-    for (int x = x0; x < x1; ++x)
-      for (int i = first; i < first + count; ++i) {
-        float weight = 0.0f;
-        const Ray ray = job.camera_ray(*s, x, y, i, weight);
-        film.add_sample(x, y, integrator.li(ray, *s, counter), weight);
-      }
+  integrator.render_tile(job, x0, y0, x1, y1, first, count, counter);
   totals.rays.fetch_add(counter.rays, std::memory_order_relaxed);
   totals.traversal_ticks.fetch_add(counter.traversal_ticks, std::memory_order_relaxed);
   totals.tile_ticks.fetch_add(tick_count() - start, std::memory_order_relaxed);
 }
 
 }  // namespace
+
+void SamplingIntegrator::render_tile(RenderJob& job, int x0, int y0, int x1, int y1, int first,
+                                     int count, RayCounter& counter) const {
+  auto s = job.sampler->clone();
+  Film& film = *job.film;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x)
+      for (int i = first; i < first + count; ++i) {
+        float weight = 0.0f;
+        const Ray ray = job.camera_ray(*s, x, y, i, weight);
+        film.add_sample(x, y, li(ray, *s, counter), weight);
+      }
+}
 
 RenderStats SamplingIntegrator::render(RenderJob& job) {
   return render_passes(job, *this);

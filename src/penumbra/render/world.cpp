@@ -277,17 +277,17 @@ bool World::closest_hit_cost(const Ray& ray, Hit& hit, TraversalCost& cost) cons
   return true;
 }
 
+bool World::closest_hit(const Ray& ray, Hit& hit, RayCounter& counter) const {
+  if (++counter.rays % kTimedEvery != 0) return closest_hit(ray, hit);
+  const uint64_t t0 = tick_count();
+  const bool found = closest_hit(ray, hit);
+  counter.traversal_ticks += (tick_count() - t0) * kTimedEvery;
+  return found;
+}
+
 bool World::intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const {
   Hit hit;
-  bool found;
-  if (++counter.rays % kTimedEvery == 0) {
-    const uint64_t t0 = tick_count();
-    found = closest_hit(ray, hit);
-    counter.traversal_ticks += (tick_count() - t0) * kTimedEvery;
-  } else {
-    found = closest_hit(ray, hit);
-  }
-  if (!found) return false;
+  if (!closest_hit(ray, hit, counter)) return false;
   interaction(ray, hit, si);
   return true;
 }

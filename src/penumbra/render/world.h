@@ -51,6 +51,18 @@ class World {
   bool closest_hit_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const;
   /// Closest hit along `ray`; fills `si` and returns true when there is one.
   bool intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const;
+  /// closest_hit, counted (and one ray in 17 timed) in `counter` as intersect counts it: for
+  /// shaders that complete the interaction themselves.
+  bool closest_hit(const Ray& ray, Hit& hit, RayCounter& counter) const;
+  /// True when the interaction of scene primitive `prim` is its plane's alone: a static triangle of
+  /// a shape without shading normals, uvs or emission (path's lanes compute those eight at once).
+  bool plain_triangle(uint32_t prim) const {
+    const ShapeInfo& s = shapes_[prims_.origin(prim).shape];
+    return prims_.kind(prim) == PrimKind::kTriangle && !prims_.moving(prim) && s.mesh < 0 &&
+           !s.area_light;
+  }
+  /// True when the shape's transform mirrors it, so its triangles' front side is flipped.
+  bool shape_flips_normal(uint32_t shape) const { return shapes_[shape].flip_normal; }
   /// True when something blocks `ray` on (tmin, tmax).
   bool occluded(const Ray& ray, RayCounter& counter) const;
   /// Completes the surface interaction of a hit found by the accelerator.

@@ -44,6 +44,12 @@ class SamplingIntegrator : public Integrator {
   virtual void end_pass(RenderJob& /*job*/, int /*spp_done*/) {}
   /// Radiance arriving at the camera along `ray`.
   virtual Rgb li(const Ray& ray, Sampler& sampler, RayCounter& counter) const = 0;
+  /// Renders samples [first, first + count) of every pixel of [x0, x1) x [y0, y1) into the job's
+  /// film. The default calls li per sample, pixel by pixel with the sample index rising; an
+  /// integrator may shade many samples at once (path's lanes) if the film receives the same
+  /// values in the same order.
+  virtual void render_tile(RenderJob& job, int x0, int y0, int x1, int y1, int first, int count,
+                           RayCounter& counter) const;
 };
 
 /// The deepest recursion of the recursive integrators (whitted, distribution): each bounce is a

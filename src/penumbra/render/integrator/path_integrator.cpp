@@ -51,8 +51,20 @@ PathIntegrator::PathIntegrator(const World& world, const ParamList& params, int 
       rr_depth_(static_cast<int>(params.get_int("rr_depth", 3, 0, 1 << 30))),
       rr_exponent_(static_cast<float>(params.get_real("rr_exponent", 0.5, 1e-3, 1.0))),
       light_sampler_(sampled_lights(world, strategy_),
-                     params.get_string("light_sampler", "power")) {
+                     params.get_string("light_sampler", "power")),
+      scalar_(params.get_flag("scalar")) {
   params.check_all_used();
+  if (!scalar_) lanes_ = PathLanes::make(*this, world);
+}
+
+PathIntegrator::~PathIntegrator() = default;
+
+void PathIntegrator::render_tile(RenderJob& job, int x0, int y0, int x1, int y1, int first,
+                                 int count, RayCounter& counter) const {
+  if (lanes_)
+    lanes_->render_tile(job, x0, y0, x1, y1, first, count, counter);
+  else
+    SamplingIntegrator::render_tile(job, x0, y0, x1, y1, first, count, counter);
 }
 
 std::string PathIntegrator::name() const {
@@ -61,6 +73,7 @@ std::string PathIntegrator::name() const {
   if (rr_depth_ != 3) s += fmt::format(",rr_depth={}", rr_depth_);
   if (rr_exponent_ != 0.5f) s += fmt::format(",rr_exponent={}", rr_exponent_);
   if (light_sampler_.strategy() != "power") s += ",light_sampler=" + light_sampler_.strategy();
+  if (scalar_) s += ",scalar";
   return s;
 }
 

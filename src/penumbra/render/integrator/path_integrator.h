@@ -2,10 +2,12 @@
 /// `path`: unidirectional path tracing, the unbiased solution of the rendering equation (Kajiya
 /// 1986, "The Rendering Equation"; next-event estimation and multiple importance sampling after
 /// Veach 1997, "Robust Monte Carlo Methods for Light Transport Simulation", chapter 9).
+#include <memory>
 #include <string>
 
 #include "penumbra/core/params.h"
 #include "penumbra/render/integrator/integrator.h"
+#include "penumbra/render/integrator/path_lanes.h"
 #include "penumbra/render/light/light_sampler.h"
 
 namespace penumbra {
@@ -30,13 +32,23 @@ namespace penumbra {
 /// Parameters: strategy (mis, nee, bsdf), max_depth (bounces; default unbounded: -1, or the
 /// scene's / --max-depth when given), rr_depth (default 3), rr_exponent (default 0.5, Cycles'
 /// square root; 1 is pbrt-v4's and Mitsuba 3's survival by the throughput itself), light_sampler
-/// (power, uniform).
+/// (power, uniform), scalar (a flag: one path at a time even where the lanes could serve).
+///
+/// Where the world allows (PathLanes: untextured diffuse materials, area lights, no infinite
+/// lights or instances) eight paths are shaded at once, one per vector lane, with the same
+/// floats: the image is the same to the bit with or without `scalar`.
 class PathIntegrator final : public SamplingIntegrator {
  public:
   enum class Strategy { kMis, kNee, kBsdf };
   PathIntegrator(const World& world, const ParamList& params, int max_depth);
   std::string name() const override;
+  ~PathIntegrator() override;
   Rgb li(const Ray& ray, Sampler& sampler, RayCounter& counter) const override;
+  /// By the lanes where they serve the world, else one sample at a time.
+  void render_tile(RenderJob& job, int x0, int y0, int x1, int y1, int first, int count,
+                   RayCounter& counter) const override;
+  /// True when tiles are shaded eight paths at once.
+  bool uses_lanes() const { return lanes_ != nullptr; }
 
  private:
   /// li for a sampler of static type S: with the final SobolSampler its calls are inlined (four
@@ -58,6 +70,10 @@ class PathIntegrator final : public SamplingIntegrator {
   int rr_depth_;
   float rr_exponent_;  ///< survival probability = (max beta eta^2)^rr_exponent, in (0, 1]
   LightSampler light_sampler_;
+  bool scalar_ = false;  ///< the `scalar` flag
+  std::unique_ptr<PathLanes> lanes_;
+
+  friend class PathLanes;  // shares the parameters, the light sampler and emission_weight
 };
 
 }  // namespace penumbra

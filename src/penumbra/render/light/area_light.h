@@ -62,7 +62,8 @@ class AreaLight final : public Light {
   /// counted once).
   size_t unit_count() const { return units_.size(); }
 
- private:
+  // For shaders of many paths at once (path's lanes), which sample planar units eight at a time
+  // with the same operations as sample_li.
   enum class UnitKind : uint8_t {
     kTriangle,       ///< o, e1, e2 as the triangle's vertex 0 and its two edges from it
     kParallelogram,  ///< o + s e1 + t e2, s, t in [0, 1]: a quad or a pair of triangles
@@ -97,6 +98,14 @@ class AreaLight final : public Light {
     const size_t i = std::min(size_t(base - cdf_.data()) + (*base <= u), cdf_.size() - 1);
     return {uint32_t(i), std::clamp((u - cdf_lo_[i]) * inv_pmf_[i], 0.0f, 0x1.fffffep-1f)};
   }
+  /// Sampling unit i.
+  const Unit& unit(size_t i) const { return units_[i]; }
+  /// P(unit i), as sample_li multiplies it into its density.
+  float unit_pmf(size_t i) const { return pmf_[i]; }
+  /// The constant emitted radiance.
+  Rgb radiance() const { return radiance_; }
+
+ private:
   /// A uniform point q on unit `unit` by area, with its unit front normal n.
   void sample_area(const Unit& unit, Vec2 u, Vec3& q, Vec3& n) const;
   /// True when the receiver at p sees the unit by its solid-angle strategy.

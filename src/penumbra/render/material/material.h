@@ -97,6 +97,8 @@ class Material {
   bool is_specular() const { return !has_non_specular(); }
   /// A representative reflectance, for debugging views.
   virtual Rgb albedo() const = 0;
+  /// True when a parameter is textured (at() then builds a copy per surface point).
+  bool textured() const { return textured_; }
   /// This material at surface point `si`: itself, or, when a parameter is textured, a copy with
   /// the textures evaluated at `si`, built in `scratch` (which must outlive the use).
   const Material& at(const SurfaceInteraction& si, MaterialScratch& scratch) const {

@@ -1,0 +1,48 @@
+#pragma once
+/// path's shading of eight paths at once, one per vector lane: the same estimator, the same
+/// random numbers and the same floats as PathIntegrator's one-path-at-a-time code, with the work
+/// between two traversals (the surface interaction, diffuse sampling, the area light's sample,
+/// the MIS weights, the continuation) done for eight paths by one vector instruction each.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "penumbra/core/color.h"
+#include "penumbra/render/world.h"
+
+namespace penumbra {
+
+class PathIntegrator;
+class RenderJob;
+
+/// The lanes of one PathIntegrator. They serve worlds whose every material is an untextured
+/// diffuse one, whose sampled lights are area lights and which have no infinite lights and no
+/// instances: what the Cornell box and most diffuse interiors are. Primitives other than static
+/// plain triangles (spheres, quads, triangles with shading normals or uvs, emitters) take the
+/// scalar surface interaction in their lane, and units of area lights other than triangles and
+/// parallelograms the scalar light sample, so any geometry of such a world works.
+class PathLanes {
+ public:
+  /// The lanes for `path` on `world`, or null when the world needs the scalar code (see above).
+  static std::unique_ptr<PathLanes> make(const PathIntegrator& path, const World& world);
+
+  /// Renders samples [first, first + count) of every pixel of [x0, x1) x [y0, y1) and adds them
+  /// to the job's film in the scalar loop's order (pixel by pixel, sample index rising), so the
+  /// film gets the same bits.
+  void render_tile(RenderJob& job, int x0, int y0, int x1, int y1, int first, int count,
+                   RayCounter& counter) const;
+
+ private:
+  PathLanes(const PathIntegrator& path, const World& world);
+  template <class S>
+  void run(RenderJob& job, int x0, int y0, int x1, int y1, int first, int count,
+           RayCounter& counter) const;
+
+  const PathIntegrator& path_;
+  const World& world_;
+  std::vector<Rgb> albedo_;  ///< per shape: its diffuse material's albedo
+  std::vector<uint8_t>
+      plain_;  ///< per primitive: World::plain_triangle, with bit 1 its shape's flip
+};
+
+}  // namespace penumbra

@@ -1,0 +1,136 @@
+// path's lanes (eight paths shaded at once) against its one-path-at-a-time code: the same bits on
+// every image, for every strategy and parameter, and on a world whose primitives and lights take
+// every scalar fallback of the lanes.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include <fmt/format.h>
+
+#include "penumbra/render/integrator/integrator_registry.h"
+#include "penumbra/render/integrator/path_integrator.h"
+#include "render_helpers.h"
+
+namespace penumbra {
+namespace {
+
+/// A room with every kind of primitive and emitter that the lanes hand to scalar code: a quad
+/// wall, a sphere, a mesh with shading normals, a mirrored mesh (its front side flipped), a
+/// one-triangle light, a rectangular quad light (sampled by solid angle), a sphere light and a
+/// two-sided parallelogram light of two triangles, beside plain triangles (the floor, the
+/// ceiling) that the lanes shade themselves.
+std::string mixed_scene(const std::string& integrator, const std::string& sampler) {
+  return fmt::format(R"({{
+    "camera": {{"type": "pinhole", "position": [0, 1, -3.5], "look_at": [0, 1, 0], "vfov": 60}},
+    "render": {{"resolution": [20, 20], "spp": 16, "seed": 11, "integrator": "{}",
+                "sampler": "{}"}},
+    "materials": {{"white": {{"type": "diffuse", "albedo": [0.8, 0.8, 0.8]}},
+                   "red": {{"type": "diffuse", "albedo": [0.7, 0.1, 0.1]}},
+                   "black": {{"type": "diffuse", "albedo": [0, 0, 0]}}}},
+    "shapes": [
+      {{"type": "mesh", "material": "white",
+        "positions": [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]],
+        "indices": [[0, 2, 1], [0, 3, 2]]}},
+      {{"type": "mesh", "material": "white",
+        "positions": [[-2, 2.5, -2], [2, 2.5, -2], [2, 2.5, 2], [-2, 2.5, 2]],
+        "indices": [[0, 1, 2], [0, 2, 3]]}},
+      {{"type": "quad", "origin": [-2, 0, 2], "edge1": [4, 0, 0], "edge2": [0, 2.5, 0],
+        "material": "red"}},
+      {{"type": "sphere", "center": [0.8, 0.5, 0.5], "radius": 0.5, "material": "white"}},
+      {{"type": "mesh", "material": "red",
+        "positions": [[-2, 0, -2], [-2, 0, 2], [-2, 2.5, 2], [-2, 2.5, -2]],
+        "normals": [[1, 0.2, 0], [1, 0, 0.1], [1, -0.1, 0], [1, 0, 0]],
+        "indices": [[0, 1, 2], [0, 2, 3]]}},
+      {{"type": "mesh", "material": "white", "transform": [{{"scale": [-1, 1, 1]}}],
+        "positions": [[-2, 0, -2], [-2, 0, 2], [-2, 2.5, 2], [-2, 2.5, -2]],
+        "indices": [[0, 2, 1], [0, 3, 2]]}},
+      {{"type": "mesh", "material": "black", "emission": [6, 5, 4],
+        "positions": [[-0.5, 2.49, 0], [0.5, 2.49, 0], [0, 2.49, 0.6]],
+        "indices": [[0, 2, 1]]}},
+      {{"type": "quad", "origin": [-1.5, 2.45, -1], "edge1": [0.4, 0, 0], "edge2": [0, 0, 0.4],
+        "material": "black", "emission": [3, 3, 8]}},
+      {{"type": "sphere", "center": [-1, 0.3, 0.8], "radius": 0.15, "material": "black",
+        "emission": [10, 6, 2]}},
+      {{"type": "mesh", "material": "black", "emission": [2, 4, 2], "two_sided": true,
+        "positions": [[1.2, 1.5, 1], [1.8, 1.5, 1], [1.8, 2.0, 1.2], [1.2, 2.0, 1.2]],
+        "indices": [[0, 1, 2], [0, 2, 3]]}}
+    ]
+  }})",
+                     integrator, sampler);
+}
+
+RgbImage render_json(const std::string& json, int threads) {
+  return test::render_desc(test::scene_from_text(json), threads);
+}
+
+/// Whether `spec` on the scene `json` shades by lanes.
+bool uses_lanes(const std::string& json, const std::string& spec) {
+  const SceneDesc desc = test::scene_from_text(json);
+  const World world(desc, "bvh");
+  const auto integrator = make_integrator(spec, world, desc.render);
+  return dynamic_cast<const PathIntegrator&>(*integrator).uses_lanes();
+}
+
+/// Sum of every channel of every pixel.
+double total(const RgbImage& img) {
+  double s = 0;
+  for (int y = 0; y < img.height(); ++y)
+    for (int x = 0; x < img.width(); ++x) s += img.at(x, y).r + img.at(x, y).g + img.at(x, y).b;
+  return s;
+}
+
+TEST(PathLanes, ServeDiffuseWorldsLitByAreaLightsOnly) {
+  EXPECT_TRUE(uses_lanes(mixed_scene("path", "sobol"), "path"));
+  EXPECT_FALSE(uses_lanes(mixed_scene("path", "sobol"), "path:scalar"));
+  // A glossy material, an environment, a point light: the scalar code.
+  std::string glossy = mixed_scene("path", "sobol");
+  glossy.replace(glossy.find(R"("type": "diffuse", "albedo": [0.8, 0.8, 0.8])"),
+                 std::string(R"("type": "diffuse", "albedo": [0.8, 0.8, 0.8])").size(),
+                 R"("type": "conductor", "roughness": 0.3, "reflectance": [0.9, 0.9, 0.9])");
+  EXPECT_FALSE(uses_lanes(glossy, "path"));
+  std::string sky = mixed_scene("path", "sobol");
+  sky.replace(sky.find(R"("sampler": "sobol")"), std::string(R"("sampler": "sobol")").size(),
+              R"("sampler": "sobol", "background": [0.1, 0.1, 0.1])");
+  EXPECT_FALSE(uses_lanes(sky, "path"));
+  std::string lamp = mixed_scene("path", "sobol");
+  lamp.replace(lamp.find(R"("shapes": [)"), std::string(R"("shapes": [)").size(),
+               R"("lights": [{"type": "point", "position": [0, 2, 0], "intensity": [1, 1, 1]}],
+                  "shapes": [)");
+  EXPECT_FALSE(uses_lanes(lamp, "path"));
+}
+
+class PathLanesBits : public testing::TestWithParam<const char*> {};
+
+// Every fallback (scalar interactions, emission weights, scalar light samples) and every lane
+// computation give the scalar code's floats: the images are equal value for value.
+TEST_P(PathLanesBits, MixedWorldRendersTheSameBitsAsOnePathAtATime) {
+  const std::string spec = GetParam();
+  for (const char* sampler : {"sobol", "independent"}) {
+    const RgbImage lanes = render_json(mixed_scene(spec, sampler), 2);
+    const RgbImage scalar =
+        render_json(mixed_scene(spec + (spec == "path" ? ":" : ",") + "scalar", sampler), 1);
+    EXPECT_GT(total(lanes), 1.0) << sampler;  // something was lit
+    EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec << " with " << sampler;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Parameters, PathLanesBits,
+                         testing::Values("path", "path:strategy=nee", "path:strategy=bsdf",
+                                         "path:max_depth=1", "path:max_depth=0",
+                                         "path:rr_exponent=1", "path:rr_exponent=0.7,rr_depth=1",
+                                         "path:light_sampler=uniform"));
+
+// The Cornell box (plain triangles, one parallelogram light): the same bits, and paths far longer
+// than the window of samples in flight (no roulette, 300 bounces) keep the film's order.
+TEST(PathLanes, CornellBoxRendersTheSameBitsAsOnePathAtATime) {
+  for (const char* spec : {"path", "path:rr_depth=1000,max_depth=300"}) {
+    const RgbImage lanes = test::cornell_box(spec, 24, 8, 2);
+    const RgbImage scalar =
+        test::cornell_box(std::string(spec) + (spec[4] ? "," : ":") + "scalar", 24, 8, 1);
+    EXPECT_GT(total(lanes), 1.0);
+    EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec;
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
