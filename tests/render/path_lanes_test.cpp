@@ -59,6 +59,33 @@ std::string mixed_scene(const std::string& integrator, const std::string& sample
                      integrator, sampler);
 }
 
+/// A room lit by one emitter of five triangles: a parallelogram pair and three triangles of
+/// different sizes, so the lanes pick among four units by their own search (one light, all of
+/// its units planar).
+std::string one_light_scene(const std::string& integrator) {
+  return fmt::format(R"({{
+    "camera": {{"type": "pinhole", "position": [0, 1, -3.5], "look_at": [0, 1, 0], "vfov": 60}},
+    "render": {{"resolution": [20, 20], "spp": 16, "seed": 5, "integrator": "{}"}},
+    "materials": {{"white": {{"type": "diffuse", "albedo": [0.8, 0.8, 0.8]}},
+                   "green": {{"type": "diffuse", "albedo": [0.1, 0.6, 0.2]}}}},
+    "shapes": [
+      {{"type": "mesh", "material": "white",
+        "positions": [[-2, 0, -2], [2, 0, -2], [2, 0, 2], [-2, 0, 2]],
+        "indices": [[0, 2, 1], [0, 3, 2]]}},
+      {{"type": "mesh", "material": "green",
+        "positions": [[-2, 0, 2], [2, 0, 2], [2, 2.5, 2], [-2, 2.5, 2]],
+        "indices": [[0, 1, 2], [0, 2, 3]]}},
+      {{"type": "mesh", "material": "white", "emission": [5, 4, 3],
+        "positions": [[-1, 2.4, 0], [-0.5, 2.4, 0], [-0.5, 2.4, 0.5], [-1, 2.4, 0.5],
+                      [0, 2.4, 0], [0.6, 2.4, 0], [0, 2.4, 0.2],
+                      [0.8, 2.3, -1], [1.0, 2.3, -1], [0.8, 2.3, -0.9],
+                      [-1.5, 1.5, 1.9], [-1.2, 1.5, 1.9], [-1.5, 1.9, 1.9]],
+        "indices": [[0, 1, 2], [0, 2, 3], [4, 5, 6], [7, 8, 9], [10, 11, 12]]}}
+    ]
+  }})",
+                     integrator);
+}
+
 RgbImage render_json(const std::string& json, int threads) {
   return test::render_desc(test::scene_from_text(json), threads);
 }
@@ -119,6 +146,17 @@ INSTANTIATE_TEST_SUITE_P(Parameters, PathLanesBits,
                                          "path:max_depth=1", "path:max_depth=0",
                                          "path:rr_exponent=1", "path:rr_exponent=0.7,rr_depth=1",
                                          "path:light_sampler=uniform"));
+
+// One light of several units: the lanes' own pick among them, against the scalar code.
+TEST(PathLanes, OneLightOfManyUnitsRendersTheSameBitsAsOnePathAtATime) {
+  for (const char* spec : {"path", "path:strategy=nee"}) {
+    const RgbImage lanes = render_json(one_light_scene(spec), 2);
+    const RgbImage scalar =
+        render_json(one_light_scene(std::string(spec) + (spec[4] ? "," : ":") + "scalar"), 1);
+    EXPECT_GT(total(lanes), 1.0);
+    EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec;
+  }
+}
 
 // The Cornell box (plain triangles, one parallelogram light): the same bits, and paths far longer
 // than the window of samples in flight (no roulette, 300 bounces) keep the film's order.

@@ -14,6 +14,10 @@
 #include <immintrin.h>
 #endif
 
+// Without AVX, GCC notes that 32-byte vector arguments pass differently than with it; these
+// functions are inline and never cross a library boundary, so the note does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace penumbra::lanes {
 
 /// Lanes per vector.
@@ -65,6 +69,40 @@ inline unsigned bits(I8 m) {
 #endif
 }
 
+/// The floats base[idx[i]] (AVX2's gather where the machine has it).
+inline F8 gather(const float* base, I8 idx) {
+#if defined(__AVX2__)
+  return (F8)_mm256_i32gather_ps(base, (__m256i)idx, 4);
+#else
+  F8 r;
+  for (int i = 0; i < kWidth; ++i) r[i] = base[idx[i]];
+  return r;
+#endif
+}
+
+/// Eight floats written one lane at a time, then read as one vector. A vector variable written
+/// lane by lane is stored and reloaded whole around every write when the compiler keeps it in a
+/// register, and each reload waits for a narrower store it cannot be forwarded from (perf put
+/// several percent of path's lanes on such reloads); the buffer takes the writes in memory and
+/// is loaded once.
+struct F8Buf {
+  alignas(32) float v[kWidth] = {};
+  F8 load() const {
+    F8 r;
+    std::memcpy(&r, v, sizeof r);
+    return r;
+  }
+};
+/// The same for masks and integers.
+struct I8Buf {
+  alignas(32) int32_t v[kWidth] = {};
+  I8 load() const {
+    I8 r;
+    std::memcpy(&r, v, sizeof r);
+    return r;
+  }
+};
+
 /// Eight 3-vectors, one per lane.
 struct V3 {
   F8 x, y, z;
@@ -72,6 +110,13 @@ struct V3 {
   Vec3 lane(int i) const { return {x[i], y[i], z[i]}; }
   /// Sets lane i.
   void set(int i, Vec3 v) { x[i] = v.x, y[i] = v.y, z[i] = v.z; }
+};
+/// Eight 3-vectors written lane by lane, then read as one V3 (see F8Buf).
+struct V3Buf {
+  F8Buf x, y, z;
+  void set(int i, Vec3 a) { x.v[i] = a.x, y.v[i] = a.y, z.v[i] = a.z; }
+  Vec3 lane(int i) const { return {x.v[i], y.v[i], z.v[i]}; }
+  V3 load() const { return {x.load(), y.load(), z.load()}; }
 };
 inline V3 operator+(V3 a, V3 b) {
   return {a.x + b.x, a.y + b.y, a.z + b.z};
@@ -140,7 +185,9 @@ inline V3 offset_ray_origin(V3 p, V3 p_error, V3 n, V3 w) {
   const F8 s = (F8)((U8)d ^ ((U8)(dot(w, n) < 0.0f) & 0x80000000u));
   const auto axis = [&](F8 pc, F8 nc) {
     F8 offset = nc * s;
+#if defined(__AVX__)
     asm("" : "+x"(offset));  // two roundings, as the scalar form (no FMA)
+#endif
     const F8 po = pc + offset;
     const U8 b = (U8)po;
     const U8 toward_up = (U8) ~(po > 0.0f) | 1u;  // +1 where positive, else -1 (all bits)

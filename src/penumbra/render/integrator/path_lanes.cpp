@@ -23,6 +23,8 @@ using lanes::splat;
 using lanes::V3;
 
 constexpr float kInvPi = std::numbers::inv_pi_v<float>;
+/// The largest float below 1 (LightSampler's and AreaLight::pick's bound on a remainder).
+constexpr float kOneMinusEpsilon = 0x1.fffffep-1f;
 /// Samples in flight from the oldest unfinished one: a finished sample waits in this window
 /// until every sample before it is done, then goes to the film in order. A path longer than the
 /// window's worth of others only idles the lanes for a while.
@@ -96,6 +98,28 @@ std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const Wor
 PathLanes::PathLanes(const PathIntegrator& path, const World& world) : path_(path), world_(world) {
   for (size_t s = 0; s < world.shape_count(); ++s)
     albedo_.push_back(world.shape_material(uint32_t(s)).albedo());
+  // The only light's units, when they are all planar: picked and sampled eight at once.
+  const auto& lights = path.light_sampler_.lights();
+  const auto* area = lights.size() == 1 ? dynamic_cast<const AreaLight*>(lights[0]) : nullptr;
+  if (area && area->unit_count() > 0) {
+    auto t = std::make_unique<PlanarUnits>();
+    for (size_t i = 0; i < area->unit_count(); ++i) {
+      const AreaLight::Unit& u = area->unit(i);
+      if (u.kind != AreaLight::UnitKind::kTriangle && u.kind != AreaLight::UnitKind::kParallelogram)
+        t.reset();
+      if (!t) break;
+      t->cdf.push_back(area->unit_cdf(i)), t->cdf_lo.push_back(area->unit_cdf_lo(i));
+      t->inv_pmf.push_back(area->unit_inv_pmf(i)), t->pmf.push_back(area->unit_pmf(i));
+      t->area.push_back(u.area);
+      for (int a = 0; a < 3; ++a) {
+        t->o[a].push_back(u.o[a]), t->e1[a].push_back(u.e1[a]), t->e2[a].push_back(u.e2[a]);
+        t->n[a].push_back(u.n[a]);
+      }
+      t->triangle.push_back(u.kind == AreaLight::UnitKind::kTriangle ? 1.0f : 0.0f);
+    }
+    if (t) t->radiance = area->radiance(), t->two_sided = area->two_sided();
+    units_ = std::move(t);
+  }
   const PrimitiveSet& prims = world.primitives();
   plain_.resize(prims.size());
   for (uint32_t id = 0; id < prims.size(); ++id)
@@ -112,9 +136,142 @@ void PathLanes::render_tile(RenderJob& job, int x0, int y0, int x1, int y1, int 
     run<Sampler>(job, x0, y0, x1, y1, first, count, counter);
 }
 
+/// A vertex of each lane's path, as the light sample needs it.
+struct PathLanes::Vertex {
+  V3 p, p_error, ng, ns;
+  V3 f;           ///< the diffuse BSDF's value, albedo / pi
+  F8 wo_z;        ///< cosine of the outgoing direction with ns
+  F8 ul_x, ul_y;  ///< the light pair
+};
+
+/// Each lane's light and unit, picked lane by lane: planar units for the lanes' own sample,
+/// other units sampled by AreaLight::sample_li in their lane.
+struct PathLanes::LightLanes {
+  LightLanes() {
+    for (int l = 0; l < kWidth; ++l) area.v[l] = 1.0f;
+  }
+  lanes::V3Buf o, e1, e2, n, li, wi;
+  lanes::F8Buf area, rest, unit_pmf, pick_pmf, dist, pdf;
+  lanes::I8Buf triangle, two_sided;
+  unsigned planar = 0;  ///< lanes with a planar unit
+  unsigned scalar = 0;  ///< lanes with a light sample from sample_li (wi, dist, pdf, li)
+};
+
+void PathLanes::pick_light(Vec2 u, Vec3 p, int l, LightLanes& ll) const {
+  // PathIntegrator::sample_light's pick and AreaLight::sample_li's, step by step.
+  float rest = u.x;
+  const SampledLight picked = path_.light_sampler_.sample(u.x, &rest);
+  if (!picked.light || !(picked.pmf > 0.0f)) return;
+  const auto& light = static_cast<const AreaLight&>(*picked.light);
+  if (light.unit_count() == 0) return;
+  ll.pick_pmf.v[l] = picked.pmf;
+  const AreaLight::Picked pk = light.pick(rest);
+  const AreaLight::Unit& unit = light.unit(pk.unit);
+  if (unit.kind == AreaLight::UnitKind::kTriangle ||
+      unit.kind == AreaLight::UnitKind::kParallelogram) {
+    ll.planar |= 1u << l;
+    ll.o.set(l, unit.o), ll.e1.set(l, unit.e1), ll.e2.set(l, unit.e2), ll.n.set(l, unit.n);
+    ll.area.v[l] = unit.area, ll.rest.v[l] = pk.u, ll.unit_pmf.v[l] = light.unit_pmf(pk.unit);
+    ll.triangle.v[l] = unit.kind == AreaLight::UnitKind::kTriangle ? -1 : 0;
+    ll.two_sided.v[l] = light.two_sided() ? -1 : 0;
+    const Rgb r = light.radiance();
+    ll.li.set(l, {r.r, r.g, r.b});
+    return;
+  }
+  const LightSample ls = light.sample_li(p, {rest, u.y});
+  if (ls.li.is_black() || !(ls.pdf > 0.0f)) return;
+  ll.scalar |= 1u << l;
+  ll.wi.set(l, ls.wi), ll.dist.v[l] = ls.distance, ll.pdf.v[l] = ls.pdf;
+  ll.li.set(l, {ls.li.r, ls.li.g, ls.li.b});
+}
+
+V3 PathLanes::light_contribution(const Vertex& vx, unsigned alive, LightLanes& ll, const Ray* ray,
+                                 RayCounter& counter) const {
+  // The unit and the point on it: AreaLight::sample_area, then sample_li's density by area.
+  V3 o, e1, e2, n, li;
+  F8 area, rest, unit_pmf, pick_pmf;
+  I8 triangle, two_sided, planar;
+  if (units_) {
+    // One light (LightSampler::sample's remainder min(u, 1 - eps), probability 1) and
+    // AreaLight::pick's branch-free search, eight lanes at once.
+    const PlanarUnits& t = *units_;
+    const F8 u = vx.ul_x < kOneMinusEpsilon ? vx.ul_x : splat(kOneMinusEpsilon);
+    I8 k{};
+    size_t len = t.cdf.size();
+    while (len > 1) {
+      const size_t half = len / 2;
+      k += (lanes::gather(t.cdf.data(), k + int32_t(half - 1)) <= u) & int32_t(half);
+      len -= half;
+    }
+    k += (lanes::gather(t.cdf.data(), k) <= u) & 1;
+    k = k < int32_t(t.cdf.size() - 1) ? k : I8{} + int32_t(t.cdf.size() - 1);
+    const auto at = [&](const std::vector<float>& a) { return lanes::gather(a.data(), k); };
+    const F8 r = (u - at(t.cdf_lo)) * at(t.inv_pmf);
+    rest = r < 0.0f ? splat(0.0f) : (kOneMinusEpsilon < r ? splat(kOneMinusEpsilon) : r);
+    o = {at(t.o[0]), at(t.o[1]), at(t.o[2])};
+    e1 = {at(t.e1[0]), at(t.e1[1]), at(t.e1[2])};
+    e2 = {at(t.e2[0]), at(t.e2[1]), at(t.e2[2])};
+    n = {at(t.n[0]), at(t.n[1]), at(t.n[2])};
+    area = at(t.area), unit_pmf = at(t.pmf), pick_pmf = splat(1.0f);
+    triangle = at(t.triangle) != 0.0f;
+    two_sided = I8{} - int32_t(t.two_sided);
+    li = {splat(t.radiance.r), splat(t.radiance.g), splat(t.radiance.b)};
+    planar = mask_of(alive);
+  } else {
+    o = ll.o.load(), e1 = ll.e1.load(), e2 = ll.e2.load(), n = ll.n.load(), li = ll.li.load();
+    area = ll.area.load(), rest = ll.rest.load(), unit_pmf = ll.unit_pmf.load();
+    pick_pmf = ll.pick_pmf.load();
+    triangle = ll.triangle.load(), two_sided = ll.two_sided.load();
+    planar = mask_of(ll.planar);
+  }
+  const F8 sq = lanes::sqrt(rest);
+  const V3 q = lanes::select(triangle, o + e1 * (1.0f - sq) + e2 * (vx.ul_y * sq),
+                             o + e1 * rest + e2 * vx.ul_y);
+  const V3 d = q - vx.p;
+  const F8 dist2 = lanes::dot(d, d);
+  F8 dist = lanes::sqrt(dist2);
+  V3 wi = d * (1.0f / dist);
+  const F8 cos_l = lanes::dot(n, -wi);
+  const I8 side = two_sided ? (cos_l != 0.0f) : (cos_l > 0.0f);
+  const F8 c = lanes::abs(cos_l);
+  const F8 area_pdf = c > 0.0f ? dist2 / (c * area) : splat(0.0f);
+  F8 pdf = unit_pmf * area_pdf;
+  I8 ok = planar & (dist > 0.0f) & side & (area_pdf > 0.0f) & lanes::is_finite(area_pdf);
+  for_lanes(ll.scalar, [&](int l) {
+    wi.set(l, ll.wi.lane(l)), dist[l] = ll.dist.v[l], pdf[l] = ll.pdf.v[l], ok[l] = -1;
+    li.set(l, ll.li.lane(l));
+  });
+  // The BSDF at the light's direction, and the shadow ray (SurfaceInteraction::spawn_ray_to).
+  const F8 cos_s = lanes::dot(wi, vx.ns);
+  const I8 same = vx.wo_z * cos_s > 0.0f;
+  const V3 f = lanes::select(same, vx.f, V3{}) * lanes::abs(cos_s);
+  ok &= ~is_black(f);
+  const V3 target = vx.p + wi * dist;
+  const V3 so = lanes::offset_ray_origin(vx.p, vx.p_error, vx.ng, target - vx.p);
+  const V3 sd = target - so;
+  unsigned lit = 0;
+  for_lanes(lanes::bits(ok) & alive, [&](int l) {
+    Ray r;
+    r.o = so.lane(l), r.d = sd.lane(l), r.tmax = 1.0f - 1e-4f, r.time = ray[l].time;
+    if (!world_.occluded(r, counter)) lit |= 1u << l;
+  });
+  // PathIntegrator::sample_light's weight: the power heuristic against the BSDF's density.
+  const F8 light_pdf = pick_pmf * pdf;
+  const V3 fl = f * li;
+  const V3 contribution =
+      path_.strategy_ == PathIntegrator::Strategy::kMis
+          ? fl * (power_heuristic(light_pdf, same ? lanes::abs(cos_s) * kInvPi : splat(0.0f)) /
+                  light_pdf)
+          : fl / light_pdf;
+  return lanes::select(mask_of(lit), contribution, V3{});
+}
+
 template <class S>
 void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, int count,
                     RayCounter& counter) const {
+  using lanes::F8Buf;
+  using lanes::I8Buf;
+  using lanes::V3Buf;
   const PathIntegrator& path = path_;
   const PrimitiveSet& prims = world_.primitives();
   const LightSampler& light_sampler = path.light_sampler_;
@@ -144,21 +301,20 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   };
   std::vector<Pending> window(kWindow);
   int64_t next = 0, flushed = 0;
-  // Per-step lane values, declared once per tile: set lane by lane where a lane needs them and
-  // left from earlier steps elsewhere (idle lanes compute on old values that nothing reads).
-  // Declared in the loop, their zero-initialisation was a memset per step: perf put 11 % of the
-  // lanes' own time on it.
+  // Lane values written lane by lane, declared once per tile: lanes that do not write them keep
+  // earlier, real values, which nothing reads. (Declared in the loop, their zero-initialisation
+  // was a memset per step: 11 % of the lanes' own time in perf.)
   Hit hit[kWidth];
-  V3 v0{}, v1{splat(1.0f), {}, {}}, v2{{}, splat(1.0f), {}}, dir{{}, {}, splat(1.0f)}, albedo{};
-  F8 hu{}, hv{};
-  I8 flip{};
-  F8 ul_x{}, ul_y{}, ub_x{}, ub_y{}, u_rr{};
-  V3 o{}, e1{}, e2{}, n{}, li{}, s_wi{};
-  F8 unit_area = splat(1.0f), u_rest{}, unit_pmf{}, pick_pmf{}, s_dist{}, s_pdf{};
-  I8 triangle{}, two_sided{};
+  V3Buf v0, v1, v2, dir, albedo;
+  for (int l = 0; l < kWidth; ++l)
+    v1.set(l, {1, 0, 0}), v2.set(l, {0, 1, 0}), dir.set(l, {0, 0, 1});
+  F8Buf hu, hv, ul_x, ul_y, ub_x, ub_y, u_rr;
+  I8Buf flip;
+  LightLanes lights;
 
   for (;;) {
     // Idle lanes take the next samples: pixel by pixel, sample index rising.
+    unsigned started = 0;
     for (unsigned idle = ~active & 0xffu; idle && next < total && next < flushed + kWindow;
          idle &= idle - 1) {
       const int l = __builtin_ctz(idle);
@@ -167,25 +323,30 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       Pending& pending = window[size_t(next % kWindow)];
       pending = {Rgb{}, 0.0f, x, y, false};
       ray[l] = job.camera_ray(*sampler[l], x, y, first + int(next % count), pending.weight);
-      beta.set(l, Vec3(1.0f)), radiance.set(l, Vec3{}), from.set(l, Vec3{});
-      bsdf_pdf[l] = 0.0f, specular[l] = -1, depth[l] = 0;
       ordinal[l] = next++;
-      active |= 1u << l;
+      started |= 1u << l;
+    }
+    if (started) {
+      const I8 fresh = mask_of(started);
+      beta = lanes::select(fresh, V3{splat(1.0f), splat(1.0f), splat(1.0f)}, beta);
+      radiance = lanes::select(fresh, V3{}, radiance);
+      from = lanes::select(fresh, V3{}, from);
+      bsdf_pdf = fresh ? splat(0.0f) : bsdf_pdf;
+      specular = fresh | specular;
+      depth = fresh ? I8{} : depth;
+      active |= started;
     }
     if (!active) break;
 
     // Closest hits, one ray at a time; a ray that leaves ends its path (no infinite lights).
-    unsigned alive = 0;
+    // The same loop gathers what the lanes' interaction needs.
+    unsigned alive = 0, scalar_si = 0;
     for_lanes(active, [&](int l) {
-      if (world_.closest_hit(ray[l], hit[l], counter)) alive |= 1u << l;
-    });
-
-    // The surface interactions: plain triangles eight at once (World::local_interaction's
-    // operations; idle lanes keep a real triangle), others by the scalar code in their lane.
-    unsigned scalar_si = 0;
-    for_lanes(alive, [&](int l) {
+      if (!world_.closest_hit(ray[l], hit[l], counter)) return;
+      alive |= 1u << l;
       const uint32_t id = hit[l].prim;
-      set_rgb(albedo, l, albedo_[prims.origin(id).shape]);
+      const Rgb a = albedo_[prims.origin(id).shape];
+      albedo.set(l, {a.r, a.g, a.b});
       dir.set(l, ray[l].d);
       const uint8_t kind = plain_[id];
       if (!(kind & 1)) {
@@ -194,17 +355,22 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       }
       const Vec3* v = prims.triangle(id);
       v0.set(l, v[0]), v1.set(l, v[1]), v2.set(l, v[2]);
-      hu[l] = hit[l].u, hv[l] = hit[l].v, flip[l] = kind & 2 ? -1 : 0;
+      hu.v[l] = hit[l].u, hv.v[l] = hit[l].v, flip.v[l] = kind & 2 ? -1 : 0;
     });
-    const F8 b0 = 1.0f - hu - hv;
-    V3 p = v0 * b0 + v1 * hu + v2 * hv;
+
+    // The surface interactions: plain triangles eight at once (World::local_interaction's
+    // operations), others by the scalar code in their lane.
+    const V3 tv0 = v0.load(), tv1 = v1.load(), tv2 = v2.load();
+    const F8 u = hu.load(), v = hv.load();
+    const F8 b0 = 1.0f - u - v;
+    V3 p = tv0 * b0 + tv1 * u + tv2 * v;
     V3 p_error =
-        (lanes::abs(v0 * b0) + lanes::abs(v1 * hu) + lanes::abs(v2 * hv)) * splat(gamma(7));
-    V3 ng = lanes::normalize(lanes::cross(v1 - v0, v2 - v0));
-    ng = lanes::select(flip, -ng, ng);
+        (lanes::abs(tv0 * b0) + lanes::abs(tv1 * u) + lanes::abs(tv2 * v)) * splat(gamma(7));
+    V3 ng = lanes::normalize(lanes::cross(tv1 - tv0, tv2 - tv0));
+    ng = lanes::select(flip.load(), -ng, ng);
     V3 ns = ng, ss, ts;
     lanes::orthonormal_basis(ns, ss, ts);
-    V3 wo = lanes::normalize(-dir);
+    V3 wo = lanes::normalize(-dir.load());
     for_lanes(scalar_si, [&](int l) {
       SurfaceInteraction si;
       world_.interaction(ray[l], hit[l], si);
@@ -225,98 +391,35 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       });
 
     // The vertex's numbers, in the scalar code's order: light pair, lobe, BSDF pair, roulette.
+    // Without a table of planar units, the light and its unit are picked here too.
+    lights.planar = lights.scalar = 0;
     for_lanes(alive, [&](int l) {
       S& s = *sampler[l];
       if (nee) {
-        const Vec2 u = s.get_2d();
-        ul_x[l] = u.x, ul_y[l] = u.y;
+        const Vec2 ul = s.get_2d();
+        ul_x.v[l] = ul.x, ul_y.v[l] = ul.y;
+        if (!units_) pick_light(ul, p.lane(l), l, lights);
       }
       (void)s.get_1d();  // the lobe number: a diffuse BSDF has one lobe
-      const Vec2 u = s.get_2d();
-      ub_x[l] = u.x, ub_y[l] = u.y;
-      u_rr[l] = s.get_1d();
+      const Vec2 ub = s.get_2d();
+      ub_x.v[l] = ub.x, ub_y.v[l] = ub.y;
+      u_rr.v[l] = s.get_1d();
     });
     const I8 alive_v = mask_of(alive);
 
     // The diffuse BSDF's sample (DiffuseMaterial::sample in the shading frame).
     const F8 wo_z = lanes::dot(wo, ns);
-    V3 wl = cosine_hemisphere(ub_x, ub_y);
+    V3 wl = cosine_hemisphere(ub_x.load(), ub_y.load());
     wl.z = wo_z < 0.0f ? -wl.z : wl.z;
     const I8 same = wo_z * wl.z > 0.0f;
     const F8 bs_pdf = same ? lanes::abs(wl.z) * kInvPi : splat(0.0f);
-    const V3 f_diffuse = albedo * splat(kInvPi);
+    const V3 f_diffuse = albedo.load() * splat(kInvPi);
     const V3 bs_f = lanes::select(same, f_diffuse, V3{});
 
     if (nee) {
-      // The light and its unit, lane by lane; planar units are sampled below, eight at once,
-      // others (spheres, rectangles by solid angle) by AreaLight::sample_li in their lane.
-      unsigned planar = 0, scalar_ls = 0;
-      for_lanes(alive, [&](int l) {
-        float rest = ul_x[l];
-        const SampledLight picked = light_sampler.sample(ul_x[l], &rest);
-        if (!picked.light || !(picked.pmf > 0.0f)) return;
-        const auto& light = static_cast<const AreaLight&>(*picked.light);
-        if (light.unit_count() == 0) return;
-        pick_pmf[l] = picked.pmf;
-        const AreaLight::Picked pk = light.pick(rest);
-        const AreaLight::Unit& unit = light.unit(pk.unit);
-        if (unit.kind == AreaLight::UnitKind::kTriangle ||
-            unit.kind == AreaLight::UnitKind::kParallelogram) {
-          planar |= 1u << l;
-          o.set(l, unit.o), e1.set(l, unit.e1), e2.set(l, unit.e2), n.set(l, unit.n);
-          unit_area[l] = unit.area, u_rest[l] = pk.u, unit_pmf[l] = light.unit_pmf(pk.unit);
-          triangle[l] = unit.kind == AreaLight::UnitKind::kTriangle ? -1 : 0;
-          two_sided[l] = light.two_sided() ? -1 : 0;
-          set_rgb(li, l, light.radiance());
-          return;
-        }
-        const LightSample ls = light.sample_li(p.lane(l), {rest, ul_y[l]});
-        if (ls.li.is_black() || !(ls.pdf > 0.0f)) return;
-        scalar_ls |= 1u << l;
-        s_wi.set(l, ls.wi), s_dist[l] = ls.distance, s_pdf[l] = ls.pdf;
-        set_rgb(li, l, ls.li);
-      });
-      // AreaLight::sample_area and sample_li's density by area.
-      const F8 sq = lanes::sqrt(u_rest);
-      const V3 q = lanes::select(triangle, o + e1 * (1.0f - sq) + e2 * (ul_y * sq),
-                                 o + e1 * u_rest + e2 * ul_y);
-      const V3 d = q - p;
-      const F8 dist2 = lanes::dot(d, d);
-      F8 dist = lanes::sqrt(dist2);
-      V3 wi = d * (1.0f / dist);
-      const F8 cos_l = lanes::dot(n, -wi);
-      const I8 side = two_sided ? (cos_l != 0.0f) : (cos_l > 0.0f);
-      const F8 c = lanes::abs(cos_l);
-      const F8 area_pdf = c > 0.0f ? dist2 / (c * unit_area) : splat(0.0f);
-      F8 pdf = unit_pmf * area_pdf;
-      I8 ok =
-          mask_of(planar) & (dist > 0.0f) & side & (area_pdf > 0.0f) & lanes::is_finite(area_pdf);
-      for_lanes(scalar_ls, [&](int l) {
-        wi.set(l, s_wi.lane(l)), dist[l] = s_dist[l], pdf[l] = s_pdf[l], ok[l] = -1;
-      });
-      // The BSDF at the light's direction, and the shadow ray (SurfaceInteraction::spawn_ray_to).
-      const F8 cos_s = lanes::dot(wi, ns);
-      const I8 same_l = wo_z * cos_s > 0.0f;
-      const V3 f = lanes::select(same_l, f_diffuse, V3{}) * lanes::abs(cos_s);
-      ok &= ~is_black(f);
-      const V3 target = p + wi * dist;
-      const V3 so = lanes::offset_ray_origin(p, p_error, ng, target - p);
-      const V3 sd = target - so;
-      unsigned lit = 0;
-      for_lanes(lanes::bits(ok) & alive, [&](int l) {
-        Ray r;
-        r.o = so.lane(l), r.d = sd.lane(l), r.tmax = 1.0f - 1e-4f, r.time = ray[l].time;
-        if (!world_.occluded(r, counter)) lit |= 1u << l;
-      });
-      const F8 light_pdf = pick_pmf * pdf;
-      const V3 fl = f * li;
-      const V3 contribution =
-          mis ? fl *
-                    (power_heuristic(light_pdf, same_l ? lanes::abs(cos_s) * kInvPi : splat(0.0f)) /
-                     light_pdf)
-              : fl / light_pdf;
-      radiance = lanes::select(
-          alive_v, radiance + beta * lanes::select(mask_of(lit), contribution, V3{}), radiance);
+      const Vertex vertex{p, p_error, ng, ns, f_diffuse, wo_z, ul_x.load(), ul_y.load()};
+      const V3 c = light_contribution(vertex, alive, lights, ray, counter);
+      radiance = lanes::select(alive_v, radiance + beta * c, radiance);
     }
 
     // The continuation: throughput, the next ray, Russian roulette.
@@ -332,7 +435,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       for (int l = 0; l < kWidth; ++l) rr[l] = std::pow(r[l], path.rr_exponent_);
     const I8 roulette = (depth + 1 >= path.rr_depth_) & (rr < 1.0f);
     const F8 q = lanes::max(splat(0.05f), 1.0f - rr);
-    go &= ~(roulette & (u_rr < q));
+    go &= ~(roulette & (u_rr.load() < q));
     beta = lanes::select(go, lanes::select(roulette, nb / (1.0f - q), nb), beta);
     specular = go ? I8{} : specular;
     bsdf_pdf = go ? bs_pdf : bsdf_pdf;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "penumbra/core/color.h"
+#include "penumbra/core/lanes.h"
 #include "penumbra/render/world.h"
 
 namespace penumbra {
@@ -34,13 +35,34 @@ class PathLanes {
 
  private:
   PathLanes(const PathIntegrator& path, const World& world);
+  struct Vertex;
+  struct LightLanes;
+  /// PathIntegrator::sample_light's pick of a light and unit for lane l at point p, with the
+  /// light pair u: a planar unit's data for the lanes, or a scalar light sample.
+  void pick_light(Vec2 u, Vec3 p, int l, LightLanes& ll) const;
+  /// PathIntegrator::sample_light lane by lane: the light sample's contribution before the
+  /// throughput at the lanes of `alive` (zero elsewhere), with their shadow rays traced.
+  lanes::V3 light_contribution(const Vertex& vx, unsigned alive, LightLanes& ll, const Ray* ray,
+                               RayCounter& counter) const;
   template <class S>
   void run(RenderJob& job, int x0, int y0, int x1, int y1, int first, int count,
            RayCounter& counter) const;
 
+  /// The units of the only light, when it is an area light of triangles and parallelograms:
+  /// what AreaLight::pick and sample_li read, one array per field, for lanes that pick and sample
+  /// eight units at once.
+  struct PlanarUnits {
+    std::vector<float> cdf, cdf_lo, inv_pmf, pmf, area;
+    std::vector<float> o[3], e1[3], e2[3], n[3];
+    std::vector<float> triangle;  ///< 1 for a triangle, 0 for a parallelogram
+    Rgb radiance;
+    bool two_sided = false;
+  };
+
   const PathIntegrator& path_;
   const World& world_;
-  std::vector<Rgb> albedo_;  ///< per shape: its diffuse material's albedo
+  std::unique_ptr<PlanarUnits> units_;  ///< null: lights are picked lane by lane
+  std::vector<Rgb> albedo_;             ///< per shape: its diffuse material's albedo
   std::vector<uint8_t>
       plain_;  ///< per primitive: World::plain_triangle, with bit 1 its shape's flip
 };

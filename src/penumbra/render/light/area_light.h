@@ -102,6 +102,10 @@ class AreaLight final : public Light {
   const Unit& unit(size_t i) const { return units_[i]; }
   /// P(unit i), as sample_li multiplies it into its density.
   float unit_pmf(size_t i) const { return pmf_[i]; }
+  /// What pick() reads of unit i: the CDF at its end and its start, and 1 / P(unit i).
+  float unit_cdf(size_t i) const { return cdf_[i]; }
+  float unit_cdf_lo(size_t i) const { return cdf_lo_[i]; }
+  float unit_inv_pmf(size_t i) const { return inv_pmf_[i]; }
   /// The constant emitted radiance.
   Rgb radiance() const { return radiance_; }
 
