@@ -197,15 +197,21 @@ V3 PathLanes::light_contribution(const Vertex& vx, unsigned alive, LightLanes& l
     const PlanarUnits& t = *units_;
     const F8 u = vx.ul_x < kOneMinusEpsilon ? vx.ul_x : splat(kOneMinusEpsilon);
     I8 k{};
-    size_t len = t.cdf.size();
-    while (len > 1) {
+    for (size_t len = t.cdf.size(); len > 1;) {
       const size_t half = len / 2;
       k += (lanes::gather(t.cdf.data(), k + int32_t(half - 1)) <= u) & int32_t(half);
       len -= half;
     }
-    k += (lanes::gather(t.cdf.data(), k) <= u) & 1;
-    k = k < int32_t(t.cdf.size() - 1) ? k : I8{} + int32_t(t.cdf.size() - 1);
-    const auto at = [&](const std::vector<float>& a) { return lanes::gather(a.data(), k); };
+    if (t.cdf.size() > 1) {
+      k += (lanes::gather(t.cdf.data(), k) <= u) & 1;
+      k = k < int32_t(t.cdf.size() - 1) ? k : I8{} + int32_t(t.cdf.size() - 1);
+    }
+    // One unit (a quad light): its values splat, not gathered (a gather of eight floats costs
+    // about as much as eight loads, and AVX2 machines without fast gathers more).
+    const bool one = t.cdf.size() == 1;
+    const auto at = [&](const std::vector<float>& a) {
+      return one ? splat(a[0]) : lanes::gather(a.data(), k);
+    };
     const F8 r = (u - at(t.cdf_lo)) * at(t.inv_pmf);
     rest = r < 0.0f ? splat(0.0f) : (kOneMinusEpsilon < r ? splat(kOneMinusEpsilon) : r);
     o = {at(t.o[0]), at(t.o[1]), at(t.o[2])};
