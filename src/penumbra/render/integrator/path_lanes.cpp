@@ -85,7 +85,9 @@ F8 power_heuristic(F8 f, F8 g) {
 }  // namespace
 
 std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const World& world) {
-  if (world.has_instances() || !world.infinite_lights().empty()) return nullptr;
+  if (world.has_instances() || !world.infinite_lights().empty() ||
+      world.shape_count() > kShapeMask)
+    return nullptr;
   for (size_t s = 0; s < world.shape_count(); ++s) {
     const Material& m = world.shape_material(uint32_t(s));
     if (typeid(m) != typeid(DiffuseMaterial) || m.textured()) return nullptr;
@@ -121,10 +123,12 @@ PathLanes::PathLanes(const PathIntegrator& path, const World& world) : path_(pat
     units_ = std::move(t);
   }
   const PrimitiveSet& prims = world.primitives();
-  plain_.resize(prims.size());
-  for (uint32_t id = 0; id < prims.size(); ++id)
-    plain_[id] = uint8_t((world.plain_triangle(id) ? 1 : 0) |
-                         (world.shape_flips_normal(prims.origin(id).shape) ? 2 : 0));
+  prim_info_.resize(prims.size());
+  for (uint32_t id = 0; id < prims.size(); ++id) {
+    const uint32_t shape = prims.origin(id).shape;
+    prim_info_[id] = shape | (world.shape_flips_normal(shape) ? kFlip : 0) |
+                     (world.plain_triangle(id) ? kPlain : 0);
+  }
 }
 
 void PathLanes::render_tile(RenderJob& job, int x0, int y0, int x1, int y1, int first, int count,
@@ -284,8 +288,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   const bool nee = !light_sampler.lights().empty();
   const bool mis = path.strategy_ == PathIntegrator::Strategy::kMis;
   Film& film = *job.film;
-  const int width = x1 - x0;
-  const int64_t total = int64_t(width) * (y1 - y0) * count;
+  const int64_t total = int64_t(x1 - x0) * (y1 - y0) * count;
 
   // Per lane: a sampler, the path's ray and state.
   std::unique_ptr<Sampler> owned[kWidth];
@@ -307,6 +310,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   };
   std::vector<Pending> window(kWindow);
   int64_t next = 0, flushed = 0;
+  int cx = x0, cy = y0, ci = first;  ///< the pixel and index of sample `next`
   // Lane values written lane by lane, declared once per tile: lanes that do not write them keep
   // earlier, real values, which nothing reads. (Declared in the loop, their zero-initialisation
   // was a memset per step: 11 % of the lanes' own time in perf.)
@@ -324,13 +328,16 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     for (unsigned idle = ~active & 0xffu; idle && next < total && next < flushed + kWindow;
          idle &= idle - 1) {
       const int l = __builtin_ctz(idle);
-      const int64_t pixel = next / count;
-      const int x = x0 + int(pixel % width), y = y0 + int(pixel / width);
       Pending& pending = window[size_t(next % kWindow)];
-      pending = {Rgb{}, 0.0f, x, y, false};
-      ray[l] = job.camera_ray(*sampler[l], x, y, first + int(next % count), pending.weight);
+      pending = {Rgb{}, 0.0f, cx, cy, false};
+      ray[l] = job.camera_ray(*sampler[l], cx, cy, ci, pending.weight);
       ordinal[l] = next++;
       started |= 1u << l;
+      // The next sample: index, then pixel along the row, then row (no 64-bit divisions).
+      if (++ci == first + count) {
+        ci = first;
+        if (++cx == x1) cx = x0, ++cy;
+      }
     }
     if (started) {
       const I8 fresh = mask_of(started);
@@ -350,18 +357,17 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     for_lanes(active, [&](int l) {
       if (!world_.closest_hit(ray[l], hit[l], counter)) return;
       alive |= 1u << l;
-      const uint32_t id = hit[l].prim;
-      const Rgb a = albedo_[prims.origin(id).shape];
+      const uint32_t id = hit[l].prim, info = prim_info_[id];
+      const Rgb a = albedo_[info & kShapeMask];
       albedo.set(l, {a.r, a.g, a.b});
       dir.set(l, ray[l].d);
-      const uint8_t kind = plain_[id];
-      if (!(kind & 1)) {
+      if (!(info & kPlain)) {
         scalar_si |= 1u << l;
         return;
       }
       const Vec3* v = prims.triangle(id);
       v0.set(l, v[0]), v1.set(l, v[1]), v2.set(l, v[2]);
-      hu.v[l] = hit[l].u, hv.v[l] = hit[l].v, flip.v[l] = kind & 2 ? -1 : 0;
+      hu.v[l] = hit[l].u, hv.v[l] = hit[l].v, flip.v[l] = info & kFlip ? -1 : 0;
     });
 
     // The surface interactions: plain triangles eight at once (World::local_interaction's

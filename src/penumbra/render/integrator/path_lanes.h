@@ -63,8 +63,10 @@ class PathLanes {
   const World& world_;
   std::unique_ptr<PlanarUnits> units_;  ///< null: lights are picked lane by lane
   std::vector<Rgb> albedo_;             ///< per shape: its diffuse material's albedo
-  std::vector<uint8_t>
-      plain_;  ///< per primitive: World::plain_triangle, with bit 1 its shape's flip
+  /// Per primitive, in one word so that a hit costs one load: its shape (the low 30 bits), bit
+  /// 30 its shape's flip, bit 31 World::plain_triangle.
+  std::vector<uint32_t> prim_info_;
+  static constexpr uint32_t kFlip = 1u << 30, kPlain = 1u << 31, kShapeMask = kFlip - 1;
 };
 
 }  // namespace penumbra
