@@ -19,9 +19,11 @@ namespace {
 /// one-triangle light, a rectangular quad light (sampled by solid angle), a sphere light and a
 /// two-sided parallelogram light of two triangles, beside plain triangles (the floor, the
 /// ceiling) that the lanes shade themselves.
-std::string mixed_scene(const std::string& integrator, const std::string& sampler) {
+std::string mixed_scene(const std::string& integrator, const std::string& sampler,
+                        const std::string& camera = R"("pinhole")") {
   return fmt::format(R"({{
-    "camera": {{"type": "pinhole", "position": [0, 1, -3.5], "look_at": [0, 1, 0], "vfov": 60}},
+    "camera": {{"type": {}, "position": [0, 1, -3.5], "look_at": [0, 1, 0], "vfov": 60,
+                "shutter": [0, 1]}},
     "render": {{"resolution": [20, 20], "spp": 16, "seed": 11, "integrator": "{}",
                 "sampler": "{}"}},
     "materials": {{"white": {{"type": "diffuse", "albedo": [0.8, 0.8, 0.8]}},
@@ -37,6 +39,8 @@ std::string mixed_scene(const std::string& integrator, const std::string& sample
       {{"type": "quad", "origin": [-2, 0, 2], "edge1": [4, 0, 0], "edge2": [0, 2.5, 0],
         "material": "red"}},
       {{"type": "sphere", "center": [0.8, 0.5, 0.5], "radius": 0.5, "material": "white"}},
+      {{"type": "sphere", "center": [-0.6, 1.4, 0.8], "radius": 0.3, "material": "red",
+        "transform_end": [{{"translate": [0.4, 0.1, 0]}}]}},
       {{"type": "mesh", "material": "red",
         "positions": [[-2, 0, -2], [-2, 0, 2], [-2, 2.5, 2], [-2, 2.5, -2]],
         "normals": [[1, 0.2, 0], [1, 0, 0.1], [1, -0.1, 0], [1, 0, 0]],
@@ -56,7 +60,7 @@ std::string mixed_scene(const std::string& integrator, const std::string& sample
         "indices": [[0, 1, 2], [0, 2, 3]]}}
     ]
   }})",
-                     integrator, sampler);
+                     camera, integrator, sampler);
 }
 
 /// A room lit by one emitter of five triangles: a parallelogram pair and three triangles of
@@ -155,6 +159,18 @@ TEST(PathLanes, OneLightOfManyUnitsRendersTheSameBitsAsOnePathAtATime) {
         render_json(one_light_scene(std::string(spec) + (spec[4] ? "," : ":") + "scalar"), 1);
     EXPECT_GT(total(lanes), 1.0);
     EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec;
+  }
+}
+
+// A camera other than the pinhole (whose rays the lanes finish themselves) and a moving
+// sphere (its interaction at each ray's time): the same bits.
+TEST(PathLanes, ThinLensCameraAndMotionBlurRenderTheSameBitsAsOnePathAtATime) {
+  for (const char* camera :
+       {R"("pinhole")", R"("thin_lens", "aperture_radius": 0.1, "focus_distance": 3.5)"}) {
+    const RgbImage lanes = render_json(mixed_scene("path", "sobol", camera), 2);
+    const RgbImage scalar = render_json(mixed_scene("path:scalar", "sobol", camera), 1);
+    EXPECT_GT(total(lanes), 1.0) << camera;
+    EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << camera;
   }
 }
 

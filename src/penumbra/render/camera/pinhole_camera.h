@@ -29,6 +29,10 @@ class PinholeCamera final : public Camera {
   /// Camera-space vector to world space.
   Vec3 to_world(Vec3 v) const { return right_ * v.x + up_ * v.y + forward_ * v.z; }
   Vec3 eye() const { return eye_; }
+  /// The camera frame in world space: to_world maps x, y, z to these.
+  Vec3 right() const { return right_; }
+  Vec3 up() const { return up_; }
+  Vec3 forward() const { return forward_; }
   /// The shutter interval that ray times are drawn from.
   const Shutter& shutter() const { return shutter_; }
   /// Replaces the shutter (cameras built from their placement start with [0, 0]).

@@ -5,6 +5,7 @@
 #include <typeinfo>
 
 #include "penumbra/core/lanes.h"
+#include "penumbra/render/camera/pinhole_camera.h"
 #include "penumbra/render/integrator/path_integrator.h"
 #include "penumbra/render/light/area_light.h"
 #include "penumbra/render/material/diffuse_material.h"
@@ -85,8 +86,7 @@ F8 power_heuristic(F8 f, F8 g) {
 }  // namespace
 
 std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const World& world) {
-  if (world.has_instances() || !world.infinite_lights().empty() ||
-      world.shape_count() > kShapeMask)
+  if (world.has_instances() || !world.infinite_lights().empty() || world.shape_count() > kShapeMask)
     return nullptr;
   for (size_t s = 0; s < world.shape_count(); ++s) {
     const Material& m = world.shape_material(uint32_t(s));
@@ -311,6 +311,13 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   std::vector<Pending> window(kWindow);
   int64_t next = 0, flushed = 0;
   int cx = x0, cy = y0, ci = first;  ///< the pixel and index of sample `next`
+  const auto* pinhole = typeid(*job.camera) == typeid(PinholeCamera)
+                            ? static_cast<const PinholeCamera*>(job.camera.get())
+                            : nullptr;
+  const Vec3 eye = pinhole ? pinhole->eye() : Vec3{}, right = pinhole ? pinhole->right() : Vec3{};
+  const Vec3 up = pinhole ? pinhole->up() : Vec3{}, forward = pinhole ? pinhole->forward() : Vec3{};
+  V3Buf camera_dir;
+  F8Buf camera_u;
   // Lane values written lane by lane, declared once per tile: lanes that do not write them keep
   // earlier, real values, which nothing reads. (Declared in the loop, their zero-initialisation
   // was a memset per step: 11 % of the lanes' own time in perf.)
@@ -324,13 +331,26 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
 
   for (;;) {
     // Idle lanes take the next samples: pixel by pixel, sample index rising.
+    // RenderJob::camera_ray with the sampler's type known; a pinhole camera's rays are finished
+    // eight at once below.
     unsigned started = 0;
     for (unsigned idle = ~active & 0xffu; idle && next < total && next < flushed + kWindow;
          idle &= idle - 1) {
       const int l = __builtin_ctz(idle);
       Pending& pending = window[size_t(next % kWindow)];
       pending = {Rgb{}, 0.0f, cx, cy, false};
-      ray[l] = job.camera_ray(*sampler[l], cx, cy, ci, pending.weight);
+      S& s = *sampler[l];
+      s.start_pixel_sample(cx, cy, ci);
+      const FilterSample fs = job.filter_sampler->sample(s.get_pixel_2d());
+      CameraSample cs;
+      cs.film = {float(cx) + 0.5f + fs.offset.x, float(cy) + 0.5f + fs.offset.y};
+      cs.lens = s.get_2d();
+      cs.time = s.get_1d();
+      pending.weight = fs.weight;
+      if (pinhole)
+        camera_dir.set(l, pinhole->camera_direction(cs.film)), camera_u.v[l] = cs.time;
+      else
+        ray[l] = job.camera->generate_ray(cs);
       ordinal[l] = next++;
       started |= 1u << l;
       // The next sample: index, then pixel along the row, then row (no 64-bit divisions).
@@ -338,6 +358,20 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
         ci = first;
         if (++cx == x1) cx = x0, ++cy;
       }
+    }
+    if (started && pinhole) {
+      // PinholeCamera::generate_ray: the direction to world space, normalised; the shutter time.
+      const V3 c = camera_dir.load();
+      const V3 d = lanes::normalize(V3{splat(right.x), splat(right.y), splat(right.z)} * c.x +
+                                    V3{splat(up.x), splat(up.y), splat(up.z)} * c.y +
+                                    V3{splat(forward.x), splat(forward.y), splat(forward.z)} * c.z);
+      const Shutter& sh = pinhole->shutter();
+      const F8 t = sh.open + (sh.close - sh.open) * camera_u.load();
+      const F8 time = t < sh.close ? t : splat(sh.close);
+      for_lanes(started, [&](int l) {
+        ray[l] = Ray{};
+        ray[l].o = eye, ray[l].d = d.lane(l), ray[l].time = time[l];
+      });
     }
     if (started) {
       const I8 fresh = mask_of(started);
