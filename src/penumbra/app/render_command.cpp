@@ -277,7 +277,7 @@ int run_render(const RenderArgs& args) {
       fmt::print(stderr, "preprocess {}\n", format_duration(stats.preprocess_seconds));
     fmt::print(stderr,
                "render {}  (total {}), {} passes, {:.3f} Msamples/s, {} rays, {:.2f} Mrays/s, "
-               "traversal {:.0f}% of tile time\n",
+               "traversal {:.1f}% of tile time\n",
                format_duration(stats.seconds), format_duration(wall.elapsed_s()), stats.passes,
                samples / secs * 1e-6, stats.rays, double(stats.rays) / secs * 1e-6,
                stats.traversal_share * 100.0);

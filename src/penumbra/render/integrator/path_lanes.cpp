@@ -55,7 +55,7 @@ void set_rgb(V3& v, int i, Rgb c) {
 }
 
 /// sample_cosine_hemisphere lane by lane: the concentric map with sin_cos_quarter's polynomials.
-V3 cosine_hemisphere(F8 ux, F8 uy) {
+[[gnu::always_inline]] inline V3 cosine_hemisphere(F8 ux, F8 uy) {
   constexpr float kPi4 = std::numbers::pi_v<float> / 4.0f;
   const F8 ox = 2.0f * ux - 1.0f, oy = 2.0f * uy - 1.0f;
   const I8 centre = (ox == 0.0f) & (oy == 0.0f);
@@ -99,7 +99,7 @@ std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const Wor
 
 PathLanes::PathLanes(const PathIntegrator& path, const World& world) : path_(path), world_(world) {
   for (size_t s = 0; s < world.shape_count(); ++s)
-    albedo_.push_back(world.shape_material(uint32_t(s)).albedo());
+    for (int c = 0; c < 3; ++c) albedo_[c].push_back(world.shape_material(uint32_t(s)).albedo()[c]);
   // The only light's units, when they are all planar: picked and sampled eight at once.
   const auto& lights = path.light_sampler_.lights();
   const auto* area = lights.size() == 1 ? dynamic_cast<const AreaLight*>(lights[0]) : nullptr;
@@ -392,8 +392,8 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       if (!world_.closest_hit(ray[l], hit[l], counter)) return;
       alive |= 1u << l;
       const uint32_t id = hit[l].prim, info = prim_info_[id];
-      const Rgb a = albedo_[info & kShapeMask];
-      albedo.set(l, {a.r, a.g, a.b});
+      const uint32_t shape = info & kShapeMask;
+      albedo.set(l, {albedo_[0][shape], albedo_[1][shape], albedo_[2][shape]});
       dir.set(l, ray[l].d);
       if (!(info & kPlain)) {
         scalar_si |= 1u << l;

@@ -62,7 +62,9 @@ class PathLanes {
   const PathIntegrator& path_;
   const World& world_;
   std::unique_ptr<PlanarUnits> units_;  ///< null: lights are picked lane by lane
-  std::vector<Rgb> albedo_;             ///< per shape: its diffuse material's albedo
+  /// Per shape: its diffuse material's albedo, one array per channel (three loads per hit
+  /// straight into the lanes' buffers, where an Rgb went through the stack).
+  std::vector<float> albedo_[3];
   /// Per primitive, in one word so that a hit costs one load: its shape (the low 30 bits), bit
   /// 30 its shape's flip, bit 31 World::plain_triangle.
   std::vector<uint32_t> prim_info_;
