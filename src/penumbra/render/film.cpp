@@ -30,20 +30,6 @@ double Film::memory_bytes(int width, int height) {
 Film::Film(int width, int height)
     : width_(width), height_(height), pixels_(checked_pixels(width, height)) {}
 
-void Film::add_sample(int x, int y, Rgb l, float weight) {
-  Pixel& p = pixels_[size_t(y) * size_t(width_) + size_t(x)];
-  const double w = weight, w2 = w * w;
-  for (int c = 0; c < 3; ++c) {
-    const double v = l[c];
-    p.sum[c] += v * w;
-    p.sum_w2l[c] += w2 * v;
-    p.sum_w2l2[c] += w2 * v * v;
-  }
-  p.weight += w;
-  p.sum_w2 += w2;
-  ++p.count;
-}
-
 void Film::set_pixel(int x, int y, Rgb value, uint32_t samples) {
   Pixel& p = pixels_[size_t(y) * size_t(width_) + size_t(x)];
   p = Pixel{};

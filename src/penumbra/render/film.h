@@ -61,4 +61,19 @@ class Film {
   std::vector<Pixel> pixels_;
 };
 
+// Inline: every camera sample of every integrator adds itself here.
+inline void Film::add_sample(int x, int y, Rgb l, float weight) {
+  Pixel& p = pixels_[size_t(y) * size_t(width_) + size_t(x)];
+  const double w = weight, w2 = w * w;
+  for (int c = 0; c < 3; ++c) {
+    const double v = l[c];
+    p.sum[c] += v * w;
+    p.sum_w2l[c] += w2 * v;
+    p.sum_w2l2[c] += w2 * v * v;
+  }
+  p.weight += w;
+  p.sum_w2 += w2;
+  ++p.count;
+}
+
 }  // namespace penumbra

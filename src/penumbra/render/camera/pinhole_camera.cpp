@@ -68,12 +68,6 @@ void PinholeCamera::set_window(float tan_half, const std::array<double, 4>& w) {
   oy_ = static_cast<float>(double(tan_half) * 0.5 * (w[3] + w[2]));
 }
 
-Vec3 PinholeCamera::camera_direction(Vec2 film) const {
-  // With the default window (ox_ = oy_ = 0) this is t a (2 sx/W - 1), t (1 - 2 sy/H).
-  return {kx_ * (2.0f * film.x * inv_w_ - 1.0f) + ox_, ky_ * (1.0f - 2.0f * film.y * inv_h_) + oy_,
-          1.0f};
-}
-
 Ray PinholeCamera::generate_ray(const CameraSample& s) const {
   Ray r;
   r.o = eye_;

@@ -25,7 +25,12 @@ class PinholeCamera final : public Camera {
   PinholeCamera(Vec3 position, Vec3 look_at, Vec3 up, float vfov_deg, int width, int height);
   Ray generate_ray(const CameraSample& s) const override;
   /// Camera-space direction through film point `film` (unnormalised, z = 1): +x right, +y up.
-  Vec3 camera_direction(Vec2 film) const;
+  /// Inline: path's lanes call it per camera sample.
+  Vec3 camera_direction(Vec2 film) const {
+    // With the default window (ox_ = oy_ = 0) this is t a (2 sx/W - 1), t (1 - 2 sy/H).
+    return {kx_ * (2.0f * film.x * inv_w_ - 1.0f) + ox_,
+            ky_ * (1.0f - 2.0f * film.y * inv_h_) + oy_, 1.0f};
+  }
   /// Camera-space vector to world space.
   Vec3 to_world(Vec3 v) const { return right_ * v.x + up_ * v.y + forward_ * v.z; }
   Vec3 eye() const { return eye_; }
