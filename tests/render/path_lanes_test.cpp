@@ -110,24 +110,43 @@ double total(const RgbImage& img) {
   return s;
 }
 
-TEST(PathLanes, ServeDiffuseWorldsLitByAreaLightsOnly) {
+/// The mixed scene under a sky, with a point light, a spot and the sun.
+std::string lamps_scene(const std::string& integrator) {
+  std::string json = mixed_scene(integrator, "sobol");
+  json.replace(json.find(R"("sampler": "sobol")"), std::string(R"("sampler": "sobol")").size(),
+               R"("sampler": "sobol", "background": [0.2, 0.3, 0.5])");
+  json.replace(json.find(R"("shapes": [)"), std::string(R"("shapes": [)").size(),
+               R"("lights": [{"type": "point", "position": [0.5, 2, 0], "intensity": [2, 2, 2]},
+                             {"type": "spot", "position": [-1, 2.2, -1], "look_at": [0, 0, 1],
+                              "intensity": [4, 3, 2], "cone_angle": 40},
+                             {"type": "directional", "direction": [0.2, -1, 0.3],
+                              "irradiance": [1, 0.9, 0.8]}],
+                  "shapes": [)");
+  return json;
+}
+
+TEST(PathLanes, ServeDiffuseWorlds) {
   EXPECT_TRUE(uses_lanes(mixed_scene("path", "sobol"), "path"));
+  EXPECT_TRUE(uses_lanes(lamps_scene("path"), "path"));
   EXPECT_FALSE(uses_lanes(mixed_scene("path", "sobol"), "path:scalar"));
-  // A glossy material, an environment, a point light: the scalar code.
+  // A glossy material: the scalar code.
   std::string glossy = mixed_scene("path", "sobol");
   glossy.replace(glossy.find(R"("type": "diffuse", "albedo": [0.8, 0.8, 0.8])"),
                  std::string(R"("type": "diffuse", "albedo": [0.8, 0.8, 0.8])").size(),
                  R"("type": "conductor", "roughness": 0.3, "reflectance": [0.9, 0.9, 0.9])");
   EXPECT_FALSE(uses_lanes(glossy, "path"));
-  std::string sky = mixed_scene("path", "sobol");
-  sky.replace(sky.find(R"("sampler": "sobol")"), std::string(R"("sampler": "sobol")").size(),
-              R"("sampler": "sobol", "background": [0.1, 0.1, 0.1])");
-  EXPECT_FALSE(uses_lanes(sky, "path"));
-  std::string lamp = mixed_scene("path", "sobol");
-  lamp.replace(lamp.find(R"("shapes": [)"), std::string(R"("shapes": [)").size(),
-               R"("lights": [{"type": "point", "position": [0, 2, 0], "intensity": [1, 1, 1]}],
-                  "shapes": [)");
-  EXPECT_FALSE(uses_lanes(lamp, "path"));
+}
+
+// The sky (rays that leave, weighted against its samples), delta lights (no MIS weight) and the
+// sun's unbounded shadow rays: the same bits.
+TEST(PathLanes, SkyAndDeltaLightsRenderTheSameBitsAsOnePathAtATime) {
+  for (const char* spec : {"path", "path:strategy=nee", "path:strategy=bsdf"}) {
+    const RgbImage lanes = render_json(lamps_scene(spec), 2);
+    const RgbImage scalar =
+        render_json(lamps_scene(std::string(spec) + (spec[4] ? "," : ":") + "scalar"), 1);
+    EXPECT_GT(total(lanes), 1.0) << spec;
+    EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec;
+  }
 }
 
 class PathLanesBits : public testing::TestWithParam<const char*> {};

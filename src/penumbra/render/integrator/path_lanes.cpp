@@ -86,14 +86,11 @@ F8 power_heuristic(F8 f, F8 g) {
 }  // namespace
 
 std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const World& world) {
-  if (world.has_instances() || !world.infinite_lights().empty() || world.shape_count() > kShapeMask)
-    return nullptr;
+  if (world.has_instances() || world.shape_count() > kShapeMask) return nullptr;
   for (size_t s = 0; s < world.shape_count(); ++s) {
     const Material& m = world.shape_material(uint32_t(s));
     if (typeid(m) != typeid(DiffuseMaterial) || m.textured()) return nullptr;
   }
-  for (const Light* light : path.light_sampler_.lights())
-    if (!dynamic_cast<const AreaLight*>(light)) return nullptr;
   return std::unique_ptr<PathLanes>(new PathLanes(path, world));
 }
 
@@ -159,6 +156,8 @@ struct PathLanes::LightLanes {
   lanes::I8Buf triangle, two_sided;
   unsigned planar = 0;  ///< lanes with a planar unit
   unsigned scalar = 0;  ///< lanes with a light sample from sample_li (wi, dist, pdf, li)
+  unsigned delta = 0;   ///< of those, samples of delta lights (no MIS weight)
+  unsigned far = 0;     ///< of those, samples at infinite distance (an unbounded shadow ray)
 };
 
 void PathLanes::pick_light(Vec2 u, Vec3 p, int l, LightLanes& ll) const {
@@ -166,25 +165,33 @@ void PathLanes::pick_light(Vec2 u, Vec3 p, int l, LightLanes& ll) const {
   float rest = u.x;
   const SampledLight picked = path_.light_sampler_.sample(u.x, &rest);
   if (!picked.light || !(picked.pmf > 0.0f)) return;
-  const auto& light = static_cast<const AreaLight&>(*picked.light);
-  if (light.unit_count() == 0) return;
   ll.pick_pmf.v[l] = picked.pmf;
-  const AreaLight::Picked pk = light.pick(rest);
-  const AreaLight::Unit& unit = light.unit(pk.unit);
-  if (unit.kind == AreaLight::UnitKind::kTriangle ||
-      unit.kind == AreaLight::UnitKind::kParallelogram) {
-    ll.planar |= 1u << l;
-    ll.o.set(l, unit.o), ll.e1.set(l, unit.e1), ll.e2.set(l, unit.e2), ll.n.set(l, unit.n);
-    ll.area.v[l] = unit.area, ll.rest.v[l] = pk.u, ll.unit_pmf.v[l] = light.unit_pmf(pk.unit);
-    ll.triangle.v[l] = unit.kind == AreaLight::UnitKind::kTriangle ? -1 : 0;
-    ll.two_sided.v[l] = light.two_sided() ? -1 : 0;
-    const Rgb r = light.radiance();
-    ll.li.set(l, {r.r, r.g, r.b});
-    return;
+  // An area light's triangle or parallelogram unit: sampled in the lanes.
+  const auto* area = picked.light->kind() == LightKind::kArea
+                         ? dynamic_cast<const AreaLight*>(picked.light)
+                         : nullptr;
+  if (area && area->unit_count() > 0) {
+    const AreaLight::Picked pk = area->pick(rest);
+    const AreaLight::Unit& unit = area->unit(pk.unit);
+    if (unit.kind == AreaLight::UnitKind::kTriangle ||
+        unit.kind == AreaLight::UnitKind::kParallelogram) {
+      ll.planar |= 1u << l;
+      ll.o.set(l, unit.o), ll.e1.set(l, unit.e1), ll.e2.set(l, unit.e2), ll.n.set(l, unit.n);
+      ll.area.v[l] = unit.area, ll.rest.v[l] = pk.u, ll.unit_pmf.v[l] = area->unit_pmf(pk.unit);
+      ll.triangle.v[l] = unit.kind == AreaLight::UnitKind::kTriangle ? -1 : 0;
+      ll.two_sided.v[l] = area->two_sided() ? -1 : 0;
+      const Rgb r = area->radiance();
+      ll.li.set(l, {r.r, r.g, r.b});
+      return;
+    }
   }
-  const LightSample ls = light.sample_li(p, {rest, u.y});
+  // Any other light (spheres, rectangles by solid angle, points, spots, the sun, environments):
+  // its own sample_li in this lane.
+  const LightSample ls = picked.light->sample_li(p, {rest, u.y});
   if (ls.li.is_black() || !(ls.pdf > 0.0f)) return;
   ll.scalar |= 1u << l;
+  if (ls.delta) ll.delta |= 1u << l;
+  if (std::isinf(ls.distance)) ll.far |= 1u << l;
   ll.wi.set(l, ls.wi), ll.dist.v[l] = ls.distance, ll.pdf.v[l] = ls.pdf;
   ll.li.set(l, {ls.li.r, ls.li.g, ls.li.b});
 }
@@ -262,17 +269,24 @@ V3 PathLanes::light_contribution(const Vertex& vx, unsigned alive, LightLanes& l
   unsigned lit = 0;
   for_lanes(lanes::bits(ok) & alive, [&](int l) {
     Ray r;
-    r.o = so.lane(l), r.d = sd.lane(l), r.tmax = 1.0f - 1e-4f, r.time = ray[l].time;
+    r.time = ray[l].time;
+    if (ll.far >> l & 1) {  // SurfaceInteraction::spawn_ray towards an infinitely far light
+      r.d = wi.lane(l);
+      r.o = offset_ray_origin(vx.p.lane(l), vx.p_error.lane(l), vx.ng.lane(l), r.d);
+    } else {
+      r.o = so.lane(l), r.d = sd.lane(l), r.tmax = 1.0f - 1e-4f;
+    }
     if (!world_.occluded(r, counter)) lit |= 1u << l;
   });
   // PathIntegrator::sample_light's weight: the power heuristic against the BSDF's density.
   const F8 light_pdf = pick_pmf * pdf;
   const V3 fl = f * li;
-  const V3 contribution =
-      path_.strategy_ == PathIntegrator::Strategy::kMis
-          ? fl * (power_heuristic(light_pdf, same ? lanes::abs(cos_s) * kInvPi : splat(0.0f)) /
-                  light_pdf)
-          : fl / light_pdf;
+  const V3 weighted =
+      fl *
+      (power_heuristic(light_pdf, same ? lanes::abs(cos_s) * kInvPi : splat(0.0f)) / light_pdf);
+  const V3 contribution = path_.strategy_ == PathIntegrator::Strategy::kMis
+                              ? lanes::select(mask_of(ll.delta), fl / light_pdf, weighted)
+                              : fl / light_pdf;
   return lanes::select(mask_of(lit), contribution, V3{});
 }
 
@@ -286,6 +300,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   const PrimitiveSet& prims = world_.primitives();
   const LightSampler& light_sampler = path.light_sampler_;
   const bool nee = !light_sampler.lights().empty();
+  const std::vector<const Light*>& infinite = world_.infinite_lights();
   const bool mis = path.strategy_ == PathIntegrator::Strategy::kMis;
   Film& film = *job.film;
   const int64_t total = int64_t(x1 - x0) * (y1 - y0) * count;
@@ -385,11 +400,28 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     }
     if (!active) break;
 
-    // Closest hits, one ray at a time; a ray that leaves ends its path (no infinite lights).
+    // Closest hits, one ray at a time; a ray that leaves ends its path with the environment's
+    // radiance, weighted against light sampling (PathIntegrator::trace's first step).
+    const auto escape = [&](int l) {
+      Rgb r = rgb(radiance, l);
+      const Rgb b = rgb(beta, l);
+      for (const Light* light : infinite) {
+        const Rgb le = light->le(ray[l]);
+        if (le.is_black()) continue;
+        const float w = specular[l]
+                            ? 1.0f
+                            : path.emission_weight(*light, bsdf_pdf[l], from.lane(l), ray[l].d, {});
+        r += b * le * w;
+      }
+      set_rgb(radiance, l, r);
+    };
     // The same loop gathers what the lanes' interaction needs.
     unsigned alive = 0, scalar_si = 0;
     for_lanes(active, [&](int l) {
-      if (!world_.closest_hit(ray[l], hit[l], counter)) return;
+      if (!world_.closest_hit(ray[l], hit[l], counter)) {
+        if (!infinite.empty()) escape(l);
+        return;
+      }
       alive |= 1u << l;
       const uint32_t id = hit[l].prim, info = prim_info_[id];
       const uint32_t shape = info & kShapeMask;
@@ -438,7 +470,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
 
     // The vertex's numbers, in the scalar code's order: light pair, lobe, BSDF pair, roulette.
     // Without a table of planar units, the light and its unit are picked here too.
-    lights.planar = lights.scalar = 0;
+    lights.planar = lights.scalar = lights.delta = lights.far = 0;
     for_lanes(alive, [&](int l) {
       S& s = *sampler[l];
       if (nee) {
