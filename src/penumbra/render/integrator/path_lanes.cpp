@@ -281,12 +281,13 @@ V3 PathLanes::light_contribution(const Vertex& vx, unsigned alive, LightLanes& l
   // PathIntegrator::sample_light's weight: the power heuristic against the BSDF's density.
   const F8 light_pdf = pick_pmf * pdf;
   const V3 fl = f * li;
-  const V3 weighted =
+  // Delta lights and the other strategies: unweighted (the divisions only where needed).
+  if (path_.strategy_ != PathIntegrator::Strategy::kMis)
+    return lanes::select(mask_of(lit), fl / light_pdf, V3{});
+  V3 contribution =
       fl *
       (power_heuristic(light_pdf, same ? lanes::abs(cos_s) * kInvPi : splat(0.0f)) / light_pdf);
-  const V3 contribution = path_.strategy_ == PathIntegrator::Strategy::kMis
-                              ? lanes::select(mask_of(ll.delta), fl / light_pdf, weighted)
-                              : fl / light_pdf;
+  if (ll.delta) contribution = lanes::select(mask_of(ll.delta), fl / light_pdf, contribution);
   return lanes::select(mask_of(lit), contribution, V3{});
 }
 
@@ -400,28 +401,11 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     }
     if (!active) break;
 
-    // Closest hits, one ray at a time; a ray that leaves ends its path with the environment's
-    // radiance, weighted against light sampling (PathIntegrator::trace's first step).
-    const auto escape = [&](int l) {
-      Rgb r = rgb(radiance, l);
-      const Rgb b = rgb(beta, l);
-      for (const Light* light : infinite) {
-        const Rgb le = light->le(ray[l]);
-        if (le.is_black()) continue;
-        const float w = specular[l]
-                            ? 1.0f
-                            : path.emission_weight(*light, bsdf_pdf[l], from.lane(l), ray[l].d, {});
-        r += b * le * w;
-      }
-      set_rgb(radiance, l, r);
-    };
-    // The same loop gathers what the lanes' interaction needs.
+    // Closest hits, one ray at a time, in a loop that also gathers what the lanes' interaction
+    // needs.
     unsigned alive = 0, scalar_si = 0;
     for_lanes(active, [&](int l) {
-      if (!world_.closest_hit(ray[l], hit[l], counter)) {
-        if (!infinite.empty()) escape(l);
-        return;
-      }
+      if (!world_.closest_hit(ray[l], hit[l], counter)) return;
       alive |= 1u << l;
       const uint32_t id = hit[l].prim, info = prim_info_[id];
       const uint32_t shape = info & kShapeMask;
@@ -435,6 +419,23 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       v0.set(l, v[0]), v1.set(l, v[1]), v2.set(l, v[2]);
       hu.v[l] = hit[l].u, hv.v[l] = hit[l].v, flip.v[l] = info & kFlip ? -1 : 0;
     });
+
+    // A ray that left ends its path with the environment's radiance, weighted against light
+    // sampling (PathIntegrator::trace's first step). Outside the loop above, which it slowed.
+    if (!infinite.empty())
+      for_lanes(active & ~alive, [&](int l) {
+        Rgb r = rgb(radiance, l);
+        const Rgb b = rgb(beta, l);
+        for (const Light* light : infinite) {
+          const Rgb le = light->le(ray[l]);
+          if (le.is_black()) continue;
+          const float w =
+              specular[l] ? 1.0f
+                          : path.emission_weight(*light, bsdf_pdf[l], from.lane(l), ray[l].d, {});
+          r += b * le * w;
+        }
+        set_rgb(radiance, l, r);
+      });
 
     // The surface interactions: plain triangles eight at once (World::local_interaction's
     // operations), others by the scalar code in their lane.
