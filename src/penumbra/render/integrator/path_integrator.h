@@ -34,9 +34,9 @@ namespace penumbra {
 /// square root; 1 is pbrt-v4's and Mitsuba 3's survival by the throughput itself), light_sampler
 /// (power, uniform), scalar (a flag: one path at a time even where the lanes could serve).
 ///
-/// Where the world allows (PathLanes: untextured diffuse materials, area lights, no infinite
-/// lights or instances) eight paths are shaded at once, one per vector lane, with the same
-/// floats: the image is the same to the bit with or without `scalar`.
+/// Where the world allows (PathLanes: untextured diffuse materials, no instances) eight paths
+/// are shaded at once, one per vector lane, with the same floats: the image is the same to the
+/// bit with or without `scalar`.
 class PathIntegrator final : public SamplingIntegrator {
  public:
   enum class Strategy { kMis, kNee, kBsdf };

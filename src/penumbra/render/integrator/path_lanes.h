@@ -17,11 +17,13 @@ class PathIntegrator;
 class RenderJob;
 
 /// The lanes of one PathIntegrator. They serve worlds whose every material is an untextured
-/// diffuse one, whose sampled lights are area lights and which have no infinite lights and no
-/// instances: what the Cornell box and most diffuse interiors are. Primitives other than static
-/// plain triangles (spheres, quads, triangles with shading normals or uvs, emitters) take the
-/// scalar surface interaction in their lane, and units of area lights other than triangles and
-/// parallelograms the scalar light sample, so any geometry of such a world works.
+/// diffuse one and which have no instances: the Cornell box, most diffuse interiors, diffuse
+/// scenes under a sky. Primitives other than static plain triangles (spheres, quads, moving
+/// shapes, triangles with shading normals or uvs, emitters) take the scalar surface interaction
+/// in their lane; lights other than an area light's triangle or parallelogram unit (spheres,
+/// rectangles by solid angle, points, spots, the sun, environments) their own sample_li; rays
+/// that leave collect the infinite lights there too. So any geometry and light of such a world
+/// works.
 class PathLanes {
  public:
   /// The lanes for `path` on `world`, or null when the world needs the scalar code (see above).
