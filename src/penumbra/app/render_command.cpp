@@ -21,6 +21,7 @@
 #include "penumbra/image/image_io.h"
 #include "penumbra/render/filter/filter.h"
 #include "penumbra/render/integrator/integrator_registry.h"
+#include "penumbra/render/integrator/path_integrator.h"
 #include "penumbra/render/render_job.h"
 #include "penumbra/render/sampler/sampler_registry.h"
 #include "penumbra/scene/scene_loader.h"
@@ -28,6 +29,12 @@
 namespace penumbra::app {
 
 namespace {
+
+/// " (8 paths at once)" when path shades in lanes, for the render's header line.
+const char* lanes_note(const Integrator& integrator) {
+  const auto* path = dynamic_cast<const PathIntegrator*>(&integrator);
+  return path && path->uses_lanes() ? " (8 paths at once)" : "";
+}
 
 std::atomic<bool> g_interrupted{false};
 
@@ -200,10 +207,11 @@ int run_render(const RenderArgs& args) {
   const AccelStats accel = job.world->accelerator().stats();
   if (!args.quiet)
     fmt::print(stderr,
-               "{}: {} primitives, {} lights, {} {}x{} at {} spp ({}, {} filter), {} threads, "
+               "{}: {} primitives, {} lights, {}{} {}x{} at {} spp ({}, {} filter), {} threads, "
                "accel {} built in {}\n",
                args.scene, job.world->primitives().size(), job.world->lights().size(),
-               job.integrator->name(), settings.width, settings.height, settings.spp,
+               job.integrator->name(), lanes_note(*job.integrator), settings.width,
+               settings.height, settings.spp,
                settings.sampler, job.filter->name(), thread_count(),
                job.world->accelerator().name(), format_duration(accel.build_ms * 1e-3));
   if (!args.quiet && job.world->has_instances()) {

@@ -115,85 +115,94 @@ Rgb PathIntegrator::li(const Ray& ray, Sampler& sampler, RayCounter& counter) co
 
 template <class S>
 Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter) const {
-  Rgb radiance, beta(1.0f);
-  Ray ray = camera_ray;
-  bool specular = true;   // the last bounce was specular (or there was none): emission counts fully
-  float bsdf_pdf = 0.0f;  // density of the last BSDF-sampled direction
-  Vec3 from;              // the vertex it left
-  float eta_scale = 1.0f;
+  PathState st;
+  st.ray = camera_ray;
   // One interaction for the whole path: World::intersect writes every field of it at each hit,
   // and declared in the loop its zero-initialisation (a 144-byte memset call) ran per bounce,
   // 2.7 % of a Cornell box render in perf.
   SurfaceInteraction si;
   for (int depth = 0;; ++depth) {
-    if (!world_.intersect(ray, si, counter)) {
+    if (!world_.intersect(st.ray, si, counter)) {
       // Left the scene: the environment's radiance, weighted against light sampling.
       for (const Light* light : world_.infinite_lights()) {
-        const Rgb le = light->le(ray);
+        const Rgb le = light->le(st.ray);
         if (le.is_black()) continue;
-        const float w = specular ? 1.0f : emission_weight(*light, bsdf_pdf, from, ray.d, {});
-        radiance += beta * le * w;
+        const float w =
+            st.specular ? 1.0f : emission_weight(*light, st.bsdf_pdf, st.from, st.ray.d, {});
+        st.radiance += st.beta * le * w;
       }
       break;
     }
     // Emission of an area light the path hit.
     if (!si.emitted.is_black()) {
-      const float w =
-          specular ? 1.0f
-                   : emission_weight(*si.area_light, bsdf_pdf, from, ray.d, si.light_point());
-      radiance += beta * si.emitted * w;
+      const float w = st.specular ? 1.0f
+                                  : emission_weight(*si.area_light, st.bsdf_pdf, st.from,
+                                                    st.ray.d, si.light_point());
+      st.radiance += st.beta * si.emitted * w;
     }
     if (max_depth_ >= 0 && depth >= max_depth_) break;
-
-    MaterialScratch scratch;
-    const Material& m = si.material->at(si, scratch);  // textures evaluated at the hit
-    const Vec3 wo = si.to_local(si.wo);
-    // The vertex's numbers in their fixed order: the light pair (drawn where a light is
-    // sampled, whether or not the sample is used, so that every such vertex takes the same
-    // dimensions), the lobe number, the BSDF pair, the roulette number.
-    const bool nee = m.has_non_specular() && !light_sampler_.lights().empty();
-    const Vec2 u_light = nee ? sampler.get_2d() : Vec2{};
-    const float uc = sampler.get_1d();
-    const Vec2 u = sampler.get_2d();
-    const float u_rr = sampler.get_1d();
-    // The continuation sampled from the BSDF before the light: its chain of dependent
-    // operations (the concentric map's polynomials, a square root) then runs beside the light
-    // sample's set-up instead of after the shadow ray.
-    const auto bs = m.sample(wo, uc, u, TransportMode::kRadiance);
-    // Next-event estimation at non-specular vertices.
-    if (nee) radiance += beta * sample_light(si, m, wo, ray.time, u_light, counter);
-    if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) break;
-    const Vec3 wi = si.to_world(bs->wi);
-    beta *= bs->f * (std::fabs(dot(wi, si.ns)) / bs->pdf);
-    if (!(beta.max_channel() > 0.0f) || !std::isfinite(beta.max_channel())) break;
-    specular = bs->is_specular();
-    bsdf_pdf = bs->pdf;
-    from = si.p;
-    if (bs->is_transmission()) eta_scale *= bs->eta * bs->eta;
-    // The next ray written field by field, as si.spawn_ray(wi, ray.time) would make it: a whole
-    // Ray assigned from a temporary was copied with one 32-byte load over the temporary's
-    // narrower stores, which cannot be forwarded (perf put 10 % of the loop's samples on the
-    // instruction after it; paired timings could not tell the gain from noise).
-    ray.o = offset_ray_origin(si.p, si.p_error, si.ng, wi);
-    ray.d = wi;
-    ray.tmin = 0.0f;
-    ray.tmax = kInfinity;
-
-    // Russian roulette on the throughput, undoing refraction's radiance scaling (pbrt-v4), with
-    // the survival probability (max beta eta^2)^rr_exponent: the square root by default, as
-    // Cycles does, which ends dim paths later than pbrt's and Mitsuba's exponent 1 and on the
-    // Cornell box gives 18 % less MSE for 9 % more time (docs/rendering.md).
-    const float r = beta.max_channel() * eta_scale;
-    const float rr = rr_exponent_ == 0.5f   ? std::sqrt(r)
-                     : rr_exponent_ == 1.0f ? r
-                                            : std::pow(r, rr_exponent_);
-    if (depth + 1 >= rr_depth_ && rr < 1.0f) {
-      const float q = std::max(0.05f, 1.0f - rr);
-      if (u_rr < q) break;
-      beta = beta / (1.0f - q);
-    }
+    if (!scatter(si, depth, sampler, st, counter)) break;
   }
-  return radiance;
+  return st.radiance;
 }
+
+template <class S>
+bool PathIntegrator::scatter(const SurfaceInteraction& si, int depth, S& sampler, PathState& st,
+                             RayCounter& counter) const {
+  MaterialScratch scratch;
+  const Material& m = si.material->at(si, scratch);  // textures evaluated at the hit
+  const Vec3 wo = si.to_local(si.wo);
+  // The vertex's numbers in their fixed order: the light pair (drawn where a light is
+  // sampled, whether or not the sample is used, so that every such vertex takes the same
+  // dimensions), the lobe number, the BSDF pair, the roulette number.
+  const bool nee = m.has_non_specular() && !light_sampler_.lights().empty();
+  const Vec2 u_light = nee ? sampler.get_2d() : Vec2{};
+  const float uc = sampler.get_1d();
+  const Vec2 u = sampler.get_2d();
+  const float u_rr = sampler.get_1d();
+  // The continuation sampled from the BSDF before the light: its chain of dependent
+  // operations (the concentric map's polynomials, a square root) then runs beside the light
+  // sample's set-up instead of after the shadow ray.
+  const auto bs = m.sample(wo, uc, u, TransportMode::kRadiance);
+  // Next-event estimation at non-specular vertices.
+  if (nee) st.radiance += st.beta * sample_light(si, m, wo, st.ray.time, u_light, counter);
+  if (!bs || bs->f.is_black() || !(bs->pdf > 0.0f)) return false;
+  const Vec3 wi = si.to_world(bs->wi);
+  st.beta *= bs->f * (std::fabs(dot(wi, si.ns)) / bs->pdf);
+  if (!(st.beta.max_channel() > 0.0f) || !std::isfinite(st.beta.max_channel())) return false;
+  st.specular = bs->is_specular();
+  st.bsdf_pdf = bs->pdf;
+  st.from = si.p;
+  if (bs->is_transmission()) st.eta_scale *= bs->eta * bs->eta;
+  // The next ray written field by field, as si.spawn_ray(wi, ray.time) would make it: a whole
+  // Ray assigned from a temporary was copied with one 32-byte load over the temporary's
+  // narrower stores, which cannot be forwarded (perf put 10 % of the loop's samples on the
+  // instruction after it; paired timings could not tell the gain from noise).
+  st.ray.o = offset_ray_origin(si.p, si.p_error, si.ng, wi);
+  st.ray.d = wi;
+  st.ray.tmin = 0.0f;
+  st.ray.tmax = kInfinity;
+
+  // Russian roulette on the throughput, undoing refraction's radiance scaling (pbrt-v4), with
+  // the survival probability (max beta eta^2)^rr_exponent: the square root by default, as
+  // Cycles does, which ends dim paths later than pbrt's and Mitsuba's exponent 1 and on the
+  // Cornell box gives 18 % less MSE for 9 % more time (docs/rendering.md).
+  const float r = st.beta.max_channel() * st.eta_scale;
+  const float rr = rr_exponent_ == 0.5f   ? std::sqrt(r)
+                   : rr_exponent_ == 1.0f ? r
+                                          : std::pow(r, rr_exponent_);
+  if (depth + 1 >= rr_depth_ && rr < 1.0f) {
+    const float q = std::max(0.05f, 1.0f - rr);
+    if (u_rr < q) return false;
+    st.beta = st.beta / (1.0f - q);
+  }
+  return true;
+}
+
+// The lanes' scalar vertices (path_lanes.cpp) use these two.
+template bool PathIntegrator::scatter<SobolSampler>(const SurfaceInteraction&, int, SobolSampler&,
+                                                    PathState&, RayCounter&) const;
+template bool PathIntegrator::scatter<Sampler>(const SurfaceInteraction&, int, Sampler&,
+                                               PathState&, RayCounter&) const;
 
 }  // namespace penumbra

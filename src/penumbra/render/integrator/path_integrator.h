@@ -34,8 +34,8 @@ namespace penumbra {
 /// square root; 1 is pbrt-v4's and Mitsuba 3's survival by the throughput itself), light_sampler
 /// (power, uniform), scalar (a flag: one path at a time even where the lanes could serve).
 ///
-/// Where the world allows (PathLanes: untextured diffuse materials, no instances) eight paths
-/// are shaded at once, one per vector lane, with the same floats: the image is the same to the
+/// Where the world allows (PathLanes: mostly untextured diffuse primitives, no instances) eight
+/// paths are shaded at once, one per vector lane, with the same floats: the image is the same to the
 /// bit with or without `scalar`.
 class PathIntegrator final : public SamplingIntegrator {
  public:
@@ -55,6 +55,21 @@ class PathIntegrator final : public SamplingIntegrator {
   /// per bounce; an indirect call cost more than the batched value it returns).
   template <class S>
   Rgb trace(const Ray& ray, S& sampler, RayCounter& counter) const;
+  /// A path between two vertices.
+  struct PathState {
+    Ray ray;               ///< the ray to trace next
+    Rgb radiance;          ///< gathered so far
+    Rgb beta{1.0f};        ///< throughput
+    bool specular = true;  ///< the last bounce was specular (or there was none)
+    float bsdf_pdf = 0;    ///< density of the last BSDF-sampled direction
+    Vec3 from;             ///< the vertex it left
+    float eta_scale = 1;   ///< the product of eta^2 over the refractions so far
+  };
+  /// A vertex's work after its emission: the light sample, the BSDF's continuation, the next
+  /// ray and Russian roulette. False when the path ends there.
+  template <class S>
+  bool scatter(const SurfaceInteraction& si, int depth, S& sampler, PathState& st,
+               RayCounter& counter) const;
   /// One light sample's contribution at a non-specular vertex (without the path throughput),
   /// from the vertex's light pair u.
   Rgb sample_light(const SurfaceInteraction& si, const Material& m, Vec3 wo, float time, Vec2 u,

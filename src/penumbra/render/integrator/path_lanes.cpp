@@ -76,6 +76,11 @@ void set_rgb(V3& v, int i, Rgb c) {
   return {dx, dy, z};
 }
 
+/// True for the material the lanes shade themselves: an untextured diffuse one.
+bool plain_diffuse(const Material& m) {
+  return typeid(m) == typeid(DiffuseMaterial) && !m.textured();
+}
+
 /// power_heuristic(1, f_pdf, 1, g_pdf) lane by lane.
 F8 power_heuristic(F8 f, F8 g) {
   const F8 ff = f * f, sum = ff + g * g;
@@ -87,10 +92,14 @@ F8 power_heuristic(F8 f, F8 g) {
 
 std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const World& world) {
   if (world.has_instances() || world.shape_count() > kShapeMask) return nullptr;
-  for (size_t s = 0; s < world.shape_count(); ++s) {
-    const Material& m = world.shape_material(uint32_t(s));
-    if (typeid(m) != typeid(DiffuseMaterial) || m.textured()) return nullptr;
-  }
+  // Lanes whose material is another than an untextured diffuse one take the scalar vertex, which
+  // in a lane costs a little more than alone: the lanes serve worlds where at least half of the
+  // primitives are diffuse (a proxy for the share of hits, which is not known before the render).
+  const PrimitiveSet& prims = world.primitives();
+  size_t diffuse = 0;
+  for (uint32_t id = 0; id < prims.size(); ++id)
+    diffuse += plain_diffuse(world.shape_material(prims.origin(id).shape));
+  if (2 * diffuse < prims.size()) return nullptr;
   return std::unique_ptr<PathLanes>(new PathLanes(path, world));
 }
 
@@ -123,8 +132,10 @@ PathLanes::PathLanes(const PathIntegrator& path, const World& world) : path_(pat
   prim_info_.resize(prims.size());
   for (uint32_t id = 0; id < prims.size(); ++id) {
     const uint32_t shape = prims.origin(id).shape;
-    prim_info_[id] = shape | (world.shape_flips_normal(shape) ? kFlip : 0) |
-                     (world.plain_triangle(id) ? kPlain : 0);
+    const bool diffuse = plain_diffuse(world.shape_material(shape));
+    prim_info_[id] = shape | (diffuse ? 0 : kOther) |
+                     (world.shape_flips_normal(shape) ? kFlip : 0) |
+                     (diffuse && world.plain_triangle(id) ? kPlain : 0);
   }
 }
 
@@ -313,7 +324,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     owned[l] = job.sampler->clone(), sampler[l] = static_cast<S*>(owned[l].get());
   Ray ray[kWidth];
   V3 beta{}, radiance{}, from{};
-  F8 bsdf_pdf{};
+  F8 bsdf_pdf{}, eta_scale = splat(1.0f);
   I8 specular{}, depth{};
   int64_t ordinal[kWidth] = {};
   unsigned active = 0;
@@ -395,6 +406,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       radiance = lanes::select(fresh, V3{}, radiance);
       from = lanes::select(fresh, V3{}, from);
       bsdf_pdf = fresh ? splat(0.0f) : bsdf_pdf;
+      eta_scale = fresh ? splat(1.0f) : eta_scale;
       specular = fresh | specular;
       depth = fresh ? I8{} : depth;
       active |= started;
@@ -403,7 +415,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
 
     // Closest hits, one ray at a time, in a loop that also gathers what the lanes' interaction
     // needs.
-    unsigned alive = 0, scalar_si = 0;
+    unsigned alive = 0, scalar_si = 0, other = 0, other_cont = 0;
     for_lanes(active, [&](int l) {
       if (!world_.closest_hit(ray[l], hit[l], counter)) return;
       alive |= 1u << l;
@@ -413,6 +425,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       dir.set(l, ray[l].d);
       if (!(info & kPlain)) {
         scalar_si |= 1u << l;
+        if (info & kOther) other |= 1u << l;
         return;
       }
       const Vec3* v = prims.triangle(id);
@@ -463,6 +476,20 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
                                                    ray[l].d, si.light_point());
         set_rgb(radiance, l, rgb(radiance, l) + rgb(beta, l) * si.emitted * w);
       }
+      if (!(other >> l & 1)) return;
+      // Another material: the rest of the vertex is PathIntegrator's, in this lane.
+      alive &= ~(1u << l);
+      if (path.max_depth_ >= 0 && depth[l] >= path.max_depth_) return;
+      PathIntegrator::PathState st;
+      st.ray = ray[l], st.radiance = rgb(radiance, l), st.beta = rgb(beta, l);
+      st.specular = specular[l] != 0, st.bsdf_pdf = bsdf_pdf[l], st.from = from.lane(l);
+      st.eta_scale = eta_scale[l];
+      const bool goes = path.scatter(si, depth[l], *sampler[l], st, counter);
+      set_rgb(radiance, l, st.radiance);
+      if (!goes) return;
+      other_cont |= 1u << l;
+      ray[l] = st.ray, set_rgb(beta, l, st.beta), specular[l] = st.specular ? -1 : 0;
+      bsdf_pdf[l] = st.bsdf_pdf, from.set(l, st.from), eta_scale[l] = st.eta_scale, ++depth[l];
     });
     if (path.max_depth_ >= 0)
       for_lanes(alive, [&](int l) {
@@ -505,8 +532,9 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     I8 go = alive_v & (bs_pdf > 0.0f) & ~is_black(bs_f);
     const V3 w = ss * wl.x + ts * wl.y + ns * wl.z;
     const V3 nb = beta * (bs_f * (lanes::abs(lanes::dot(w, ns)) / bs_pdf));
-    const F8 r = lanes::max_component(nb);
-    go &= (r > 0.0f) & lanes::is_finite(r);
+    const F8 mc = lanes::max_component(nb);
+    go &= (mc > 0.0f) & lanes::is_finite(mc);
+    const F8 r = mc * eta_scale;  // eta^2 of the refractions in other lanes' vertices so far
     F8 rr = r;
     if (path.rr_exponent_ == 0.5f)
       rr = lanes::sqrt(r);
@@ -521,8 +549,8 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     from = lanes::select(go, p, from);
     depth = go ? depth + 1 : depth;
     const V3 next_o = lanes::offset_ray_origin(p, p_error, ng, w);
-    const unsigned cont = lanes::bits(go);
-    for_lanes(cont, [&](int l) {
+    const unsigned cont = lanes::bits(go) | other_cont;
+    for_lanes(lanes::bits(go), [&](int l) {
       ray[l].o = next_o.lane(l), ray[l].d = w.lane(l);
       ray[l].tmin = 0.0f, ray[l].tmax = kInfinity;
     });

@@ -16,11 +16,12 @@ namespace penumbra {
 class PathIntegrator;
 class RenderJob;
 
-/// The lanes of one PathIntegrator. They serve worlds whose every material is an untextured
-/// diffuse one and which have no instances: the Cornell box, most diffuse interiors, diffuse
-/// scenes under a sky. Primitives other than static plain triangles (spheres, quads, moving
-/// shapes, triangles with shading normals or uvs, emitters) take the scalar surface interaction
-/// in their lane; lights other than an area light's triangle or parallelogram unit (spheres,
+/// The lanes of one PathIntegrator. They serve worlds without instances where at least half of
+/// the primitives have an untextured diffuse material: the Cornell box, most interiors, diffuse
+/// scenes under a sky. A vertex of another material (glass, metal, textures) is
+/// PathIntegrator::scatter's in its lane. Primitives other than static plain triangles
+/// (spheres, quads, moving shapes, triangles with shading normals or uvs, emitters) take the
+/// scalar surface interaction in their lane; lights other than an area light's triangle or parallelogram unit (spheres,
 /// rectangles by solid angle, points, spots, the sun, environments) their own sample_li; rays
 /// that leave collect the infinite lights there too. So any geometry and light of such a world
 /// works.
@@ -67,10 +68,12 @@ class PathLanes {
   /// Per shape: its diffuse material's albedo, one array per channel (three loads per hit
   /// straight into the lanes' buffers, where an Rgb went through the stack).
   std::vector<float> albedo_[3];
-  /// Per primitive, in one word so that a hit costs one load: its shape (the low 30 bits), bit
-  /// 30 its shape's flip, bit 31 World::plain_triangle.
+  /// Per primitive, in one word so that a hit costs one load: its shape (the low 29 bits), bit
+  /// 29 a material other than an untextured diffuse one (the vertex is the scalar code's), bit
+  /// 30 its shape's flip, bit 31 World::plain_triangle with a diffuse material.
   std::vector<uint32_t> prim_info_;
-  static constexpr uint32_t kFlip = 1u << 30, kPlain = 1u << 31, kShapeMask = kFlip - 1;
+  static constexpr uint32_t kOther = 1u << 29, kFlip = 1u << 30, kPlain = 1u << 31,
+                            kShapeMask = kOther - 1;
 };
 
 }  // namespace penumbra
