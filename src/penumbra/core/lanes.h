@@ -80,28 +80,23 @@ inline F8 gather(const float* base, I8 idx) {
 #endif
 }
 
-/// Eight floats written one lane at a time, then read as one vector. A vector variable written
+/// Eight lane values written one at a time, then read as one vector. A vector variable written
 /// lane by lane is stored and reloaded whole around every write when the compiler keeps it in a
 /// register, and each reload waits for a narrower store it cannot be forwarded from (perf put
 /// several percent of path's lanes on such reloads); the buffer takes the writes in memory and
 /// is loaded once.
-struct F8Buf {
-  alignas(32) float v[kWidth] = {};
-  F8 load() const {
-    F8 r;
+template <class V, class T>
+struct LaneBuf {
+  alignas(32) T v[kWidth] = {};
+  V load() const {
+    V r;
     std::memcpy(&r, v, sizeof r);
     return r;
   }
 };
+using F8Buf = LaneBuf<F8, float>;
 /// The same for masks and integers.
-struct I8Buf {
-  alignas(32) int32_t v[kWidth] = {};
-  I8 load() const {
-    I8 r;
-    std::memcpy(&r, v, sizeof r);
-    return r;
-  }
-};
+using I8Buf = LaneBuf<I8, int32_t>;
 
 /// Eight 3-vectors, one per lane.
 struct V3 {
