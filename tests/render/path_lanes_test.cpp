@@ -18,8 +18,8 @@ namespace {
 /// a quad wall, a glass sphere, a moving metal sphere, a textured mesh with shading normals, a
 /// mirrored mesh (its front side flipped), a one-triangle light, a rectangular quad light
 /// (sampled by solid angle), a sphere light and a two-sided parallelogram light of two
-/// triangles, beside plain diffuse triangles (the floor, the ceiling) that the lanes shade
-/// themselves. Three quarters of its primitives are untextured diffuse.
+/// triangles, beside plain diffuse triangles (the floor, the ceiling, a box) that the lanes shade
+/// themselves: 18 of its 28 primitives, so the lanes serve it.
 std::string mixed_scene(const std::string& integrator, const std::string& sampler,
                         const std::string& camera = R"("pinhole")") {
   return fmt::format(R"({{
@@ -45,6 +45,11 @@ std::string mixed_scene(const std::string& integrator, const std::string& sample
         "indices": [[0, 1, 2], [0, 2, 3]]}},
       {{"type": "quad", "origin": [-2, 0, 2], "edge1": [4, 0, 0], "edge2": [0, 2.5, 0],
         "material": "red"}},
+      {{"type": "mesh", "material": "red",
+        "positions": [[-0.2, 0, -0.5], [0.4, 0, -0.5], [0.4, 0, 0.1], [-0.2, 0, 0.1],
+                      [-0.2, 0.4, -0.5], [0.4, 0.4, -0.5], [0.4, 0.4, 0.1], [-0.2, 0.4, 0.1]],
+        "indices": [[0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6],
+                    [3, 0, 4], [3, 4, 7], [4, 5, 6], [4, 6, 7], [0, 3, 2], [0, 2, 1]]}},
       {{"type": "sphere", "center": [0.8, 0.5, 0.5], "radius": 0.5, "material": "glass"}},
       {{"type": "sphere", "center": [-0.6, 1.4, 0.8], "radius": 0.3, "material": "metal",
         "transform_end": [{{"translate": [0.4, 0.1, 0]}}]}},
@@ -70,9 +75,9 @@ std::string mixed_scene(const std::string& integrator, const std::string& sample
                      camera, integrator, sampler);
 }
 
-/// A room lit by one emitter of five triangles: a parallelogram pair and three triangles of
-/// different sizes, so the lanes pick among four units by their own search (one light, all of
-/// its units planar).
+/// A room with a box, lit by one emitter of five triangles: a parallelogram pair and three
+/// triangles of different sizes, so the lanes pick among four units by their own search (one
+/// light, all of its units planar). 16 of its 21 primitives are plain diffuse triangles.
 std::string one_light_scene(const std::string& integrator) {
   return fmt::format(R"({{
     "camera": {{"type": "pinhole", "position": [0, 1, -3.5], "look_at": [0, 1, 0], "vfov": 60}},
@@ -86,6 +91,11 @@ std::string one_light_scene(const std::string& integrator) {
       {{"type": "mesh", "material": "green",
         "positions": [[-2, 0, 2], [2, 0, 2], [2, 2.5, 2], [-2, 2.5, 2]],
         "indices": [[0, 1, 2], [0, 2, 3]]}},
+      {{"type": "mesh", "material": "white",
+        "positions": [[-0.2, 0, -0.5], [0.4, 0, -0.5], [0.4, 0, 0.1], [-0.2, 0, 0.1],
+                      [-0.2, 0.4, -0.5], [0.4, 0.4, -0.5], [0.4, 0.4, 0.1], [-0.2, 0.4, 0.1]],
+        "indices": [[0, 1, 5], [0, 5, 4], [1, 2, 6], [1, 6, 5], [2, 3, 7], [2, 7, 6],
+                    [3, 0, 4], [3, 4, 7], [4, 5, 6], [4, 6, 7], [0, 3, 2], [0, 2, 1]]}},
       {{"type": "mesh", "material": "white", "emission": [5, 4, 3],
         "positions": [[-1, 2.4, 0], [-0.5, 2.4, 0], [-0.5, 2.4, 0.5], [-1, 2.4, 0.5],
                       [0, 2.4, 0], [0.6, 2.4, 0], [0, 2.4, 0.2],
@@ -97,16 +107,24 @@ std::string one_light_scene(const std::string& integrator) {
                      integrator);
 }
 
+/// `spec` with one more parameter.
+std::string with(const std::string& spec, const std::string& param) {
+  return spec + (spec.find(':') == std::string::npos ? ":" : ",") + param;
+}
+
 RgbImage render_json(const std::string& json, int threads) {
   return test::render_desc(test::scene_from_text(json), threads);
 }
 
-/// Whether `spec` on the scene `json` shades by lanes.
-bool uses_lanes(const std::string& json, const std::string& spec) {
-  const SceneDesc desc = test::scene_from_text(json);
+/// Whether `spec` on the scene `desc` shades by lanes.
+bool uses_lanes(const SceneDesc& desc, const std::string& spec) {
   const World world(desc, "bvh");
   const auto integrator = make_integrator(spec, world, desc.render);
   return dynamic_cast<const PathIntegrator&>(*integrator).uses_lanes();
+}
+
+bool uses_lanes(const std::string& json, const std::string& spec) {
+  return uses_lanes(test::scene_from_text(json), spec);
 }
 
 /// Sum of every channel of every pixel.
@@ -132,12 +150,18 @@ std::string lamps_scene(const std::string& integrator) {
   return json;
 }
 
-TEST(PathLanes, ServeWorldsOfMostlyDiffusePrimitives) {
-  EXPECT_TRUE(uses_lanes(mixed_scene("path", "sobol"), "path"));
-  EXPECT_TRUE(uses_lanes(lamps_scene("path"), "path"));
-  EXPECT_FALSE(uses_lanes(mixed_scene("path", "sobol"), "path:scalar"));
-  // Metal where the room was white: 6 diffuse primitives of 16, the scalar code.
-  std::string glossy = mixed_scene("path", "sobol");
+TEST(PathLanes, ServeWhereMeasuredFasterOrWhenAsked) {
+  // lanes=auto: plain diffuse triangles lit by an area light of planar units.
+  EXPECT_TRUE(uses_lanes(test::bundled_scene("cornell-box.json"), "path"));
+  EXPECT_TRUE(uses_lanes(one_light_scene("path"), "path"));
+  EXPECT_FALSE(uses_lanes(one_light_scene("path"), "path:lanes=off"));
+  // A rectangle and a sphere among the lights, or a sky and lamps: only when asked.
+  EXPECT_FALSE(uses_lanes(mixed_scene("path", "sobol"), "path"));
+  EXPECT_TRUE(uses_lanes(mixed_scene("path", "sobol"), "path:lanes=on"));
+  EXPECT_FALSE(uses_lanes(lamps_scene("path"), "path"));
+  EXPECT_TRUE(uses_lanes(lamps_scene("path"), "path:lanes=on"));
+  // Metal where the room was white: 2 plain diffuse triangles of 21.
+  std::string glossy = one_light_scene("path");
   glossy.replace(glossy.find(R"("type": "diffuse", "albedo": [0.8, 0.8, 0.8])"),
                  std::string(R"("type": "diffuse", "albedo": [0.8, 0.8, 0.8])").size(),
                  R"("type": "conductor", "roughness": 0.3, "reflectance": [0.9, 0.9, 0.9])");
@@ -148,9 +172,8 @@ TEST(PathLanes, ServeWorldsOfMostlyDiffusePrimitives) {
 // sun's unbounded shadow rays: the same bits.
 TEST(PathLanes, SkyAndDeltaLightsRenderTheSameBitsAsOnePathAtATime) {
   for (const char* spec : {"path", "path:strategy=nee", "path:strategy=bsdf"}) {
-    const RgbImage lanes = render_json(lamps_scene(spec), 2);
-    const RgbImage scalar =
-        render_json(lamps_scene(std::string(spec) + (spec[4] ? "," : ":") + "scalar"), 1);
+    const RgbImage lanes = render_json(lamps_scene(with(spec, "lanes=on")), 2);
+    const RgbImage scalar = render_json(lamps_scene(with(spec, "lanes=off")), 1);
     EXPECT_GT(total(lanes), 1.0) << spec;
     EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec;
   }
@@ -163,9 +186,8 @@ class PathLanesBits : public testing::TestWithParam<const char*> {};
 TEST_P(PathLanesBits, MixedWorldRendersTheSameBitsAsOnePathAtATime) {
   const std::string spec = GetParam();
   for (const char* sampler : {"sobol", "independent"}) {
-    const RgbImage lanes = render_json(mixed_scene(spec, sampler), 2);
-    const RgbImage scalar =
-        render_json(mixed_scene(spec + (spec == "path" ? ":" : ",") + "scalar", sampler), 1);
+    const RgbImage lanes = render_json(mixed_scene(with(spec, "lanes=on"), sampler), 2);
+    const RgbImage scalar = render_json(mixed_scene(with(spec, "lanes=off"), sampler), 1);
     EXPECT_GT(total(lanes), 1.0) << sampler;  // something was lit
     EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec << " with " << sampler;
   }
@@ -180,9 +202,8 @@ INSTANTIATE_TEST_SUITE_P(Parameters, PathLanesBits,
 // One light of several units: the lanes' own pick among them, against the scalar code.
 TEST(PathLanes, OneLightOfManyUnitsRendersTheSameBitsAsOnePathAtATime) {
   for (const char* spec : {"path", "path:strategy=nee"}) {
-    const RgbImage lanes = render_json(one_light_scene(spec), 2);
-    const RgbImage scalar =
-        render_json(one_light_scene(std::string(spec) + (spec[4] ? "," : ":") + "scalar"), 1);
+    const RgbImage lanes = render_json(one_light_scene(spec), 2);  // lanes=auto serves it
+    const RgbImage scalar = render_json(one_light_scene(with(spec, "lanes=off")), 1);
     EXPECT_GT(total(lanes), 1.0);
     EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec;
   }
@@ -193,8 +214,8 @@ TEST(PathLanes, OneLightOfManyUnitsRendersTheSameBitsAsOnePathAtATime) {
 TEST(PathLanes, ThinLensCameraAndMotionBlurRenderTheSameBitsAsOnePathAtATime) {
   for (const char* camera :
        {R"("pinhole")", R"("thin_lens", "aperture_radius": 0.1, "focus_distance": 3.5)"}) {
-    const RgbImage lanes = render_json(mixed_scene("path", "sobol", camera), 2);
-    const RgbImage scalar = render_json(mixed_scene("path:scalar", "sobol", camera), 1);
+    const RgbImage lanes = render_json(mixed_scene("path:lanes=on", "sobol", camera), 2);
+    const RgbImage scalar = render_json(mixed_scene("path:lanes=off", "sobol", camera), 1);
     EXPECT_GT(total(lanes), 1.0) << camera;
     EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << camera;
   }
@@ -205,8 +226,7 @@ TEST(PathLanes, ThinLensCameraAndMotionBlurRenderTheSameBitsAsOnePathAtATime) {
 TEST(PathLanes, CornellBoxRendersTheSameBitsAsOnePathAtATime) {
   for (const char* spec : {"path", "path:rr_depth=1000,max_depth=300"}) {
     const RgbImage lanes = test::cornell_box(spec, 24, 8, 2);
-    const RgbImage scalar =
-        test::cornell_box(std::string(spec) + (spec[4] ? "," : ":") + "scalar", 24, 8, 1);
+    const RgbImage scalar = test::cornell_box(with(spec, "lanes=off"), 24, 8, 1);
     EXPECT_GT(total(lanes), 1.0);
     EXPECT_EQ(test::differing_values(lanes, scalar), 0u) << spec;
   }

@@ -44,17 +44,23 @@ std::vector<const Light*> sampled_lights(const World& world, PathIntegrator::Str
 
 }  // namespace
 
+PathIntegrator::Lanes PathIntegrator::parse_lanes(const std::string& s) {
+  if (s == "auto") return Lanes::kAuto;
+  if (s == "on") return Lanes::kOn;
+  if (s == "off") return Lanes::kOff;
+  throw Error("path: unknown lanes '" + s + "' (valid: auto, on, off)");
+}
+
 PathIntegrator::PathIntegrator(const World& world, const ParamList& params, int max_depth)
     : world_(world),
       strategy_(parse_strategy(params.get_string("strategy", "mis"))),
       max_depth_(static_cast<int>(params.get_int("max_depth", max_depth, -1, 1 << 30))),
       rr_depth_(static_cast<int>(params.get_int("rr_depth", 3, 0, 1 << 30))),
       rr_exponent_(static_cast<float>(params.get_real("rr_exponent", 0.5, 1e-3, 1.0))),
-      light_sampler_(sampled_lights(world, strategy_),
-                     params.get_string("light_sampler", "power")),
-      scalar_(params.get_flag("scalar")) {
+      light_sampler_(sampled_lights(world, strategy_), params.get_string("light_sampler", "power")),
+      lanes_mode_(parse_lanes(params.get_string("lanes", "auto"))) {
   params.check_all_used();
-  if (!scalar_) lanes_ = PathLanes::make(*this, world);
+  if (lanes_mode_ != Lanes::kOff) lanes_ = PathLanes::make(*this, world, lanes_mode_ == Lanes::kOn);
 }
 
 PathIntegrator::~PathIntegrator() = default;
@@ -73,7 +79,7 @@ std::string PathIntegrator::name() const {
   if (rr_depth_ != 3) s += fmt::format(",rr_depth={}", rr_depth_);
   if (rr_exponent_ != 0.5f) s += fmt::format(",rr_exponent={}", rr_exponent_);
   if (light_sampler_.strategy() != "power") s += ",light_sampler=" + light_sampler_.strategy();
-  if (scalar_) s += ",scalar";
+  if (lanes_mode_ != Lanes::kAuto) s += lanes_mode_ == Lanes::kOn ? ",lanes=on" : ",lanes=off";
   return s;
 }
 
@@ -136,8 +142,8 @@ Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter
     // Emission of an area light the path hit.
     if (!si.emitted.is_black()) {
       const float w = st.specular ? 1.0f
-                                  : emission_weight(*si.area_light, st.bsdf_pdf, st.from,
-                                                    st.ray.d, si.light_point());
+                                  : emission_weight(*si.area_light, st.bsdf_pdf, st.from, st.ray.d,
+                                                    si.light_point());
       st.radiance += st.beta * si.emitted * w;
     }
     if (max_depth_ >= 0 && depth >= max_depth_) break;
@@ -202,7 +208,7 @@ bool PathIntegrator::scatter(const SurfaceInteraction& si, int depth, S& sampler
 // The lanes' scalar vertices (path_lanes.cpp) use these two.
 template bool PathIntegrator::scatter<SobolSampler>(const SurfaceInteraction&, int, SobolSampler&,
                                                     PathState&, RayCounter&) const;
-template bool PathIntegrator::scatter<Sampler>(const SurfaceInteraction&, int, Sampler&,
-                                               PathState&, RayCounter&) const;
+template bool PathIntegrator::scatter<Sampler>(const SurfaceInteraction&, int, Sampler&, PathState&,
+                                               RayCounter&) const;
 
 }  // namespace penumbra

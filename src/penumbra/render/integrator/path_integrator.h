@@ -32,11 +32,13 @@ namespace penumbra {
 /// Parameters: strategy (mis, nee, bsdf), max_depth (bounces; default unbounded: -1, or the
 /// scene's / --max-depth when given), rr_depth (default 3), rr_exponent (default 0.5, Cycles'
 /// square root; 1 is pbrt-v4's and Mitsuba 3's survival by the throughput itself), light_sampler
-/// (power, uniform), scalar (a flag: one path at a time even where the lanes could serve).
+/// (power, uniform), lanes (auto, on, off: shading eight paths at once, below).
 ///
-/// Where the world allows (PathLanes: mostly untextured diffuse primitives, no instances) eight
-/// paths are shaded at once, one per vector lane, with the same floats: the image is the same to the
-/// bit with or without `scalar`.
+/// With `lanes=auto` (the default) eight paths are shaded at once, one per vector lane, where
+/// that was measured faster (PathLanes: mostly plain diffuse triangles, area lights of triangles
+/// and parallelograms, no instances); `lanes=on` shades in lanes wherever they can serve (any
+/// world without instances, unknown parts by the scalar code in their lane), `lanes=off` never.
+/// The lanes compute the same floats: the image is the same to the bit in every mode.
 class PathIntegrator final : public SamplingIntegrator {
  public:
   enum class Strategy { kMis, kNee, kBsdf };
@@ -85,7 +87,9 @@ class PathIntegrator final : public SamplingIntegrator {
   int rr_depth_;
   float rr_exponent_;  ///< survival probability = (max beta eta^2)^rr_exponent, in (0, 1]
   LightSampler light_sampler_;
-  bool scalar_ = false;  ///< the `scalar` flag
+  enum class Lanes { kAuto, kOn, kOff };
+  static Lanes parse_lanes(const std::string& s);
+  Lanes lanes_mode_ = Lanes::kAuto;  ///< the `lanes` parameter
   std::unique_ptr<PathLanes> lanes_;
 
   friend class PathLanes;  // shares the parameters, the light sampler and emission_weight

@@ -90,16 +90,27 @@ F8 power_heuristic(F8 f, F8 g) {
 
 }  // namespace
 
-std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const World& world) {
+std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const World& world,
+                                           bool force) {
   if (world.has_instances() || world.shape_count() > kShapeMask) return nullptr;
-  // Lanes whose material is another than an untextured diffuse one take the scalar vertex, which
-  // in a lane costs a little more than alone: the lanes serve worlds where at least half of the
-  // primitives are diffuse (a proxy for the share of hits, which is not known before the render).
-  const PrimitiveSet& prims = world.primitives();
-  size_t diffuse = 0;
-  for (uint32_t id = 0; id < prims.size(); ++id)
-    diffuse += plain_diffuse(world.shape_material(prims.origin(id).shape));
-  if (2 * diffuse < prims.size()) return nullptr;
+  if (!force) {
+    // Half of the primitives plain diffuse triangles (a proxy for the share of hits, which is
+    // not known before the render), and every sampled light an area light of planar units.
+    const PrimitiveSet& prims = world.primitives();
+    size_t plain = 0;
+    for (uint32_t id = 0; id < prims.size(); ++id)
+      plain +=
+          world.plain_triangle(id) && plain_diffuse(world.shape_material(prims.origin(id).shape));
+    if (2 * plain < prims.size()) return nullptr;
+    for (const Light* light : path.light_sampler_.lights()) {
+      const auto* area = dynamic_cast<const AreaLight*>(light);
+      if (!area) return nullptr;
+      for (size_t i = 0; i < area->unit_count(); ++i)
+        if (area->unit(i).kind != AreaLight::UnitKind::kTriangle &&
+            area->unit(i).kind != AreaLight::UnitKind::kParallelogram)
+          return nullptr;
+    }
+  }
   return std::unique_ptr<PathLanes>(new PathLanes(path, world));
 }
 

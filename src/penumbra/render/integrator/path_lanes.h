@@ -16,19 +16,24 @@ namespace penumbra {
 class PathIntegrator;
 class RenderJob;
 
-/// The lanes of one PathIntegrator. They serve worlds without instances where at least half of
-/// the primitives have an untextured diffuse material: the Cornell box, most interiors, diffuse
-/// scenes under a sky. A vertex of another material (glass, metal, textures) is
+/// The lanes of one PathIntegrator. They can serve any world without instances, and do by
+/// default where that was measured faster (see make): the Cornell box, interiors of diffuse
+/// meshes lit by quads or triangles. A vertex of another material (glass, metal, textures) is
 /// PathIntegrator::scatter's in its lane. Primitives other than static plain triangles
 /// (spheres, quads, moving shapes, triangles with shading normals or uvs, emitters) take the
-/// scalar surface interaction in their lane; lights other than an area light's triangle or parallelogram unit (spheres,
-/// rectangles by solid angle, points, spots, the sun, environments) their own sample_li; rays
-/// that leave collect the infinite lights there too. So any geometry and light of such a world
-/// works.
+/// scalar surface interaction in their lane; lights other than an area light's triangle or
+/// parallelogram unit (spheres, rectangles by solid angle, points, spots, the sun, environments)
+/// their own sample_li; rays that leave collect the infinite lights there too. So any geometry and
+/// light of such a world works.
 class PathLanes {
  public:
-  /// The lanes for `path` on `world`, or null when the world needs the scalar code (see above).
-  static std::unique_ptr<PathLanes> make(const PathIntegrator& path, const World& world);
+  /// The lanes for `path` on `world`, or null: always with instances (the top level's hits
+  /// carry no plain triangles' data), and unless `force`, where they were not measured faster
+  /// (fewer than half of the primitives plain diffuse triangles, or a sampled light other than
+  /// an area light of triangles and parallelograms: the scalar fallbacks in a lane cost a little
+  /// more than alone, 3-7 % on rooms of quads and spheres or under an environment map).
+  static std::unique_ptr<PathLanes> make(const PathIntegrator& path, const World& world,
+                                         bool force);
 
   /// Renders samples [first, first + count) of every pixel of [x0, x1) x [y0, y1) and adds them
   /// to the job's film in the scalar loop's order (pixel by pixel, sample index rising), so the
