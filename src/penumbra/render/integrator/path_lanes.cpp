@@ -324,7 +324,6 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   const LightSampler& light_sampler = path.light_sampler_;
   const bool nee = !light_sampler.lights().empty();
   const std::vector<const Light*>& infinite = world_.infinite_lights();
-  const bool mis = path.strategy_ == PathIntegrator::Strategy::kMis;
   Film& film = *job.film;
   const int64_t total = int64_t(x1 - x0) * (y1 - y0) * count;
 
