@@ -129,27 +129,31 @@ Rgb PathIntegrator::trace(const Ray& camera_ray, S& sampler, RayCounter& counter
   SurfaceInteraction si;
   for (int depth = 0;; ++depth) {
     if (!world_.intersect(st.ray, si, counter)) {
-      // Left the scene: the environment's radiance, weighted against light sampling.
-      for (const Light* light : world_.infinite_lights()) {
-        const Rgb le = light->le(st.ray);
-        if (le.is_black()) continue;
-        const float w =
-            st.specular ? 1.0f : emission_weight(*light, st.bsdf_pdf, st.from, st.ray.d, {});
-        st.radiance += st.beta * le * w;
-      }
+      add_escaped(st);
       break;
     }
-    // Emission of an area light the path hit.
-    if (!si.emitted.is_black()) {
-      const float w = st.specular ? 1.0f
-                                  : emission_weight(*si.area_light, st.bsdf_pdf, st.from, st.ray.d,
-                                                    si.light_point());
-      st.radiance += st.beta * si.emitted * w;
-    }
+    if (!si.emitted.is_black()) add_emitted(si, st);
     if (max_depth_ >= 0 && depth >= max_depth_) break;
     if (!scatter(si, depth, sampler, st, counter)) break;
   }
   return st.radiance;
+}
+
+void PathIntegrator::add_escaped(PathState& st) const {
+  for (const Light* light : world_.infinite_lights()) {
+    const Rgb le = light->le(st.ray);
+    if (le.is_black()) continue;
+    const float w =
+        st.specular ? 1.0f : emission_weight(*light, st.bsdf_pdf, st.from, st.ray.d, {});
+    st.radiance += st.beta * le * w;
+  }
+}
+
+void PathIntegrator::add_emitted(const SurfaceInteraction& si, PathState& st) const {
+  const float w = st.specular ? 1.0f
+                              : emission_weight(*si.area_light, st.bsdf_pdf, st.from, st.ray.d,
+                                                si.light_point());
+  st.radiance += st.beta * si.emitted * w;
 }
 
 template <class S>

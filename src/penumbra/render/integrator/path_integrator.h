@@ -67,6 +67,11 @@ class PathIntegrator final : public SamplingIntegrator {
     Vec3 from;             ///< the vertex it left
     float eta_scale = 1;   ///< the product of eta^2 over the refractions so far
   };
+  /// A ray that left the scene: the infinite lights' radiance along st.ray, weighted against
+  /// light sampling, added to st.radiance.
+  void add_escaped(PathState& st) const;
+  /// The emission of the area light at `si` towards the path, weighted likewise.
+  void add_emitted(const SurfaceInteraction& si, PathState& st) const;
   /// A vertex's work after its emission: the light sample, the BSDF's continuation, the next
   /// ray and Russian roulette. False when the path ends there.
   template <class S>

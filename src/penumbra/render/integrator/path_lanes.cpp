@@ -323,7 +323,6 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   const PrimitiveSet& prims = world_.primitives();
   const LightSampler& light_sampler = path.light_sampler_;
   const bool nee = !light_sampler.lights().empty();
-  const std::vector<const Light*>& infinite = world_.infinite_lights();
   Film& film = *job.film;
   const int64_t total = int64_t(x1 - x0) * (y1 - y0) * count;
 
@@ -365,6 +364,14 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   F8Buf hu, hv, ul_x, ul_y, ub_x, ub_y, u_rr;
   I8Buf flip;
   LightLanes lights;
+  // Lane l's path as PathIntegrator keeps it, for the scalar steps done in a lane.
+  const auto state = [&](int l) {
+    PathIntegrator::PathState st;
+    st.ray = ray[l], st.radiance = rgb(radiance, l), st.beta = rgb(beta, l);
+    st.specular = specular[l] != 0, st.bsdf_pdf = bsdf_pdf[l], st.from = from.lane(l);
+    st.eta_scale = eta_scale[l];
+    return st;
+  };
 
   for (;;) {
     // Idle lanes take the next samples: pixel by pixel, sample index rising.
@@ -445,19 +452,11 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
 
     // A ray that left ends its path with the environment's radiance, weighted against light
     // sampling (PathIntegrator::trace's first step). Outside the loop above, which it slowed.
-    if (!infinite.empty())
+    if (!world_.infinite_lights().empty())
       for_lanes(active & ~alive, [&](int l) {
-        Rgb r = rgb(radiance, l);
-        const Rgb b = rgb(beta, l);
-        for (const Light* light : infinite) {
-          const Rgb le = light->le(ray[l]);
-          if (le.is_black()) continue;
-          const float w =
-              specular[l] ? 1.0f
-                          : path.emission_weight(*light, bsdf_pdf[l], from.lane(l), ray[l].d, {});
-          r += b * le * w;
-        }
-        set_rgb(radiance, l, r);
+        PathIntegrator::PathState st = state(l);
+        path.add_escaped(st);
+        set_rgb(radiance, l, st.radiance);
       });
 
     // The surface interactions: plain triangles eight at once (World::local_interaction's
@@ -479,21 +478,17 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       p.set(l, si.p), p_error.set(l, si.p_error), ng.set(l, si.ng), ns.set(l, si.ns);
       ss.set(l, si.ss), ts.set(l, si.ts), wo.set(l, si.wo);
       // Emission of an area light the path hit, weighted against light sampling.
-      if (!si.emitted.is_black()) {
-        const float w = specular[l]
-                            ? 1.0f
-                            : path.emission_weight(*si.area_light, bsdf_pdf[l], from.lane(l),
-                                                   ray[l].d, si.light_point());
-        set_rgb(radiance, l, rgb(radiance, l) + rgb(beta, l) * si.emitted * w);
+      const bool emits = !si.emitted.is_black();
+      if (!emits && !(other >> l & 1)) return;
+      PathIntegrator::PathState st = state(l);
+      if (emits) {
+        path.add_emitted(si, st);
+        set_rgb(radiance, l, st.radiance);
       }
       if (!(other >> l & 1)) return;
       // Another material: the rest of the vertex is PathIntegrator's, in this lane.
       alive &= ~(1u << l);
       if (path.max_depth_ >= 0 && depth[l] >= path.max_depth_) return;
-      PathIntegrator::PathState st;
-      st.ray = ray[l], st.radiance = rgb(radiance, l), st.beta = rgb(beta, l);
-      st.specular = specular[l] != 0, st.bsdf_pdf = bsdf_pdf[l], st.from = from.lane(l);
-      st.eta_scale = eta_scale[l];
       const bool goes = path.scatter(si, depth[l], *sampler[l], st, counter);
       set_rgb(radiance, l, st.radiance);
       if (!goes) return;
