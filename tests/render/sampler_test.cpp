@@ -107,11 +107,9 @@ class ReferenceSobol {
     return p.x;
   }
   Vec2 get_2d() { return next_pair(); }
-
- private:
-  Vec2 next_pair() {
-    ++pair_;
-    const uint32_t g = pair_ * 0x9e3779b9u;
+  /// Pair p (from 1) of the current pixel sample.
+  Vec2 pair(uint32_t p) const {
+    const uint32_t g = p * 0x9e3779b9u;
     const uint32_t lo = mix32(uint32_t(pixel_hash_) + g);
     const uint32_t hi = mix32(uint32_t(pixel_hash_ >> 32) + g);
     const uint32_t yk = mix32(uint32_t(pixel_hash_ >> 32) + g + 0x6a09e667u);
@@ -119,6 +117,9 @@ class ReferenceSobol {
     return {fraction_to_float(owen_scramble(sobol_dim0(i), hi)),
             fraction_to_float(owen_scramble(sobol_dim1(i), yk))};
   }
+
+ private:
+  Vec2 next_pair() { return pair(++pair_); }
   uint32_t shuffled(uint32_t seed) const {
     if (log2_spp_ == 0) return 0;
     if (log2_spp_ > 0) {
@@ -155,6 +156,76 @@ TEST(SobolSampler, BatchedValuesMatchTheDefinition) {
           ASSERT_EQ(a.x, b.x) << "spp " << spp << " call " << c;
           ASSERT_EQ(a.y, b.y) << "spp " << spp << " call " << c;
         }
+      }
+    }
+  }
+}
+
+// A caller that computes a sample's pairs itself (PathLanes, with SobolLanes) hands the sampler
+// its state back with resume(): the next draws continue from there, also far beyond the first
+// batch of pairs that the sampler never computed, and a pending number is returned first.
+TEST(SobolSampler, ResumeContinuesAtThePairGiven) {
+  for (int spp : {64, 100}) {
+    SobolSampler sampler(spp, 9);
+    ReferenceSobol ref(spp, 9);
+    sampler.start_pixel_sample(3, 4, 5);
+    ref.start(3, 4, 5);
+    EXPECT_EQ(sampler.next_pair(), SobolSampler::kFirstPair);
+    EXPECT_FALSE(sampler.has_pending());
+    (void)sampler.get_1d();
+    EXPECT_TRUE(sampler.has_pending());
+    EXPECT_EQ(sampler.pending(), ref.pair(1).y);
+    EXPECT_EQ(sampler.next_pair(), 2u);
+    for (uint32_t skip_to : {40u, 17u, 3u}) {
+      sampler.start_pixel_sample(3, 4, 5);
+      sampler.resume(skip_to, true, 0.25f);
+      EXPECT_EQ(sampler.get_1d(), 0.25f);
+      const Vec2 a = sampler.get_2d(), b = ref.pair(skip_to);
+      EXPECT_EQ(a.x, b.x) << skip_to;
+      EXPECT_EQ(a.y, b.y) << skip_to;
+      EXPECT_EQ(sampler.get_1d(), ref.pair(skip_to + 1).x) << skip_to;
+      EXPECT_EQ(sampler.next_pair(), skip_to + 2);
+    }
+  }
+}
+
+// SobolLanes against the definition: eight samples of random pixels and indices, their pairs
+// computed lane by lane (compute3) and with lanes gathered into one vector (compute), for spp a
+// power of two, one, and neither.
+TEST(SobolLanes, LaneValuesMatchTheDefinition) {
+  Pcg32 rng(23);
+  for (int spp : {1, 2, 64, 1024, 3, 100}) {
+    std::vector<SobolSampler> samplers(8, SobolSampler(spp, 42));
+    std::vector<ReferenceSobol> refs(8, ReferenceSobol(spp, 42));
+    SobolLanes lanes(samplers[0]);
+    for (int trial = 0; trial < 50; ++trial) {
+      for (int k = 0; k < 8; ++k) {
+        const int px = int(rng.next_bounded(512)), py = int(rng.next_bounded(512));
+        const int index = int(rng.next_bounded(uint32_t(spp)));
+        samplers[size_t(k)].start_pixel_sample(px, py, index);
+        refs[size_t(k)].start(px, py, index);
+        lanes.set(k, samplers[size_t(k)]);
+      }
+      lanes::U8 first, lane, pair;
+      for (int k = 0; k < 8; ++k) {
+        first[k] = 1 + rng.next_bounded(200);
+        lane[k] = rng.next_bounded(8);
+        pair[k] = 1 + rng.next_bounded(200);
+      }
+      lanes::F8 x[3], y[3];
+      lanes.compute3(first, x, y);
+      for (int j = 0; j < 3; ++j)
+        for (int k = 0; k < 8; ++k) {
+          const Vec2 want = refs[size_t(k)].pair(first[k] + uint32_t(j));
+          ASSERT_EQ(x[j][k], want.x) << "spp " << spp << " lane " << k << " pair +" << j;
+          ASSERT_EQ(y[j][k], want.y) << "spp " << spp << " lane " << k << " pair +" << j;
+        }
+      lanes::F8 gx, gy;
+      lanes.compute(lane, pair, gx, gy);
+      for (int k = 0; k < 8; ++k) {
+        const Vec2 want = refs[lane[k]].pair(pair[k]);
+        ASSERT_EQ(gx[k], want.x) << "spp " << spp << " slot " << k;
+        ASSERT_EQ(gy[k], want.y) << "spp " << spp << " slot " << k;
       }
     }
   }

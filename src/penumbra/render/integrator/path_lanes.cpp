@@ -1,7 +1,10 @@
 #include "penumbra/render/integrator/path_lanes.h"
 
 #include <cmath>
+#include <cstring>
 #include <numbers>
+#include <optional>
+#include <type_traits>
 #include <typeinfo>
 
 #include "penumbra/core/lanes.h"
@@ -373,10 +376,37 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     return st;
   };
 
+  // A Sobol' sampler's numbers are computed eight lanes at once (SobolLanes), each lane's
+  // next pairs, instead of by each lane's sampler sixteen consecutive pairs at a time, about half
+  // of which a short path never draws. Each lane's next pair and pending 1D number
+  // (SobolSampler's state) live in the lanes then, and go to its sampler and back around a
+  // scalar vertex. A number is always pending: the camera leaves one (its time pair's second),
+  // and every vertex draws two 1D numbers (lobe and roulette), so the first takes the pending
+  // one and the second opens a pair whose other number stays pending (the mixed world's tests
+  // fail if a vertex ever breaks that).
+  constexpr bool kPairs = std::is_same_v<S, SobolSampler>;
+  std::optional<SobolLanes> sobol;
+  if constexpr (kPairs) sobol.emplace(*sampler[0]);
+  lanes::U8 next_pair{};
+  F8 pending_u{};
+  // RenderJob::camera_ray from the sampler's numbers (pixel, lens, time), with the sampler's type
+  // known; a pinhole camera's rays are finished eight at once below.
+  const auto start_camera_ray = [&](int l, Vec2 u_pixel, Vec2 u_lens, float u_time,
+                                    Pending& pending) {
+    const FilterSample fs = job.filter_sampler->sample(u_pixel);
+    CameraSample cs;
+    cs.film = {float(pending.x) + 0.5f + fs.offset.x, float(pending.y) + 0.5f + fs.offset.y};
+    cs.lens = u_lens;
+    cs.time = u_time;
+    pending.weight = fs.weight;
+    if (pinhole)
+      camera_dir.set(l, pinhole->camera_direction(cs.film)), camera_u.v[l] = cs.time;
+    else
+      ray[l] = job.camera->generate_ray(cs);
+  };
+
   for (;;) {
     // Idle lanes take the next samples: pixel by pixel, sample index rising.
-    // RenderJob::camera_ray with the sampler's type known; a pinhole camera's rays are finished
-    // eight at once below.
     unsigned started = 0;
     for (unsigned idle = ~active & 0xffu; idle && next < total && next < flushed + kWindow;
          idle &= idle - 1) {
@@ -385,22 +415,58 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       pending = {Rgb{}, 0.0f, cx, cy, false};
       S& s = *sampler[l];
       s.start_pixel_sample(cx, cy, ci);
-      const FilterSample fs = job.filter_sampler->sample(s.get_pixel_2d());
-      CameraSample cs;
-      cs.film = {float(cx) + 0.5f + fs.offset.x, float(cy) + 0.5f + fs.offset.y};
-      cs.lens = s.get_2d();
-      cs.time = s.get_1d();
-      pending.weight = fs.weight;
-      if (pinhole)
-        camera_dir.set(l, pinhole->camera_direction(cs.film)), camera_u.v[l] = cs.time;
-      else
-        ray[l] = job.camera->generate_ray(cs);
+      if constexpr (kPairs) {
+        sobol->set(l, s);  // its camera's numbers come eight at once below
+      } else {
+        // In the order of RenderJob::camera_ray (a call's arguments have none).
+        const Vec2 u_pixel = s.get_pixel_2d(), u_lens = s.get_2d();
+        start_camera_ray(l, u_pixel, u_lens, s.get_1d(), pending);
+      }
       ordinal[l] = next++;
       started |= 1u << l;
       // The next sample: index, then pixel along the row, then row (no 64-bit divisions).
       if (++ci == first + count) {
         ci = first;
         if (++cx == x1) cx = x0, ++cy;
+      }
+    }
+    if constexpr (kPairs) {
+      if (started) {
+        // The camera's pairs: pixel, time (whose second number stays pending: the first
+        // vertex's lobe number) and lens (a pinhole camera reads none). Their n lanes, a few
+        // per step, share vectors: pair j of the r-th lane is entry j n + r.
+        const int n = __builtin_popcount(started), per = pinhole ? 2 : 3;
+        constexpr uint32_t kCameraPair[3] = {0, 2, 1};
+        alignas(32) uint32_t entry_lane[3 * kWidth] = {}, entry_pair[3 * kWidth] = {};
+        int r = 0;
+        for_lanes(started, [&](int l) {
+          for (int j = 0; j < per; ++j) {
+            entry_lane[j * n + r] = uint32_t(l);
+            entry_pair[j * n + r] = SobolSampler::kFirstPair + kCameraPair[j];
+          }
+          ++r;
+        });
+        alignas(32) float ux[3 * kWidth], uy[3 * kWidth];
+        for (int e = 0; e < per * n; e += kWidth) {
+          lanes::U8 el, ep;
+          F8 x, y;
+          std::memcpy(&el, entry_lane + e, sizeof el);
+          std::memcpy(&ep, entry_pair + e, sizeof ep);
+          sobol->compute(el, ep, x, y);
+          std::memcpy(ux + e, &x, sizeof x);
+          std::memcpy(uy + e, &y, sizeof y);
+        }
+        F8Buf time_y;
+        r = 0;
+        for_lanes(started, [&](int l) {
+          start_camera_ray(l, {ux[r], uy[r]}, pinhole ? Vec2{} : Vec2{ux[2 * n + r], uy[2 * n + r]},
+                           ux[n + r], window[size_t(ordinal[l] % kWindow)]);
+          time_y.v[l] = uy[n + r];
+          ++r;
+        });
+        const I8 fresh = mask_of(started);
+        next_pair = fresh ? lanes::U8{} + (SobolSampler::kFirstPair + 3) : next_pair;
+        pending_u = fresh ? time_y.load() : pending_u;
       }
     }
     if (started && pinhole) {
@@ -489,7 +555,10 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       // Another material: the rest of the vertex is PathIntegrator's, in this lane.
       alive &= ~(1u << l);
       if (path.max_depth_ >= 0 && depth[l] >= path.max_depth_) return;
+      if constexpr (kPairs) sampler[l]->resume(next_pair[l], true, pending_u[l]);
       const bool goes = path.scatter(si, depth[l], *sampler[l], st, counter);
+      if constexpr (kPairs)
+        next_pair[l] = sampler[l]->next_pair(), pending_u[l] = sampler[l]->pending();
       set_rgb(radiance, l, st.radiance);
       if (!goes) return;
       other_cont |= 1u << l;
@@ -504,23 +573,42 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     // The vertex's numbers, in the scalar code's order: light pair, lobe, BSDF pair, roulette.
     // Without a table of planar units, the light and its unit are picked here too.
     lights.planar = lights.scalar = lights.delta = lights.far = 0;
-    for_lanes(alive, [&](int l) {
-      S& s = *sampler[l];
-      if (nee) {
-        const Vec2 ul = s.get_2d();
-        ul_x.v[l] = ul.x, ul_y.v[l] = ul.y;
-        if (!units_) pick_light(ul, p.lane(l), l, lights);
-      }
-      (void)s.get_1d();  // the lobe number: a diffuse BSDF has one lobe
-      const Vec2 ub = s.get_2d();
-      ub_x.v[l] = ub.x, ub_y.v[l] = ub.y;
-      u_rr.v[l] = s.get_1d();
-    });
+    F8 u_light_x, u_light_y, u_bsdf_x, u_bsdf_y, u_roulette;
+    if constexpr (kPairs) {
+      // The same numbers, eight lanes at once: the light pair, the pending number (the lobe's),
+      // the BSDF pair, and a pair whose first number is the roulette's and whose second stays
+      // pending.
+      F8 ux[3], uy[3];
+      sobol->compute3(next_pair, ux, uy);
+      const int b = nee ? 1 : 0;  // the BSDF pair
+      u_light_x = ux[0], u_light_y = uy[0];
+      u_bsdf_x = ux[b], u_bsdf_y = uy[b], u_roulette = ux[b + 1];
+      const I8 a = mask_of(alive);
+      next_pair = a ? next_pair + uint32_t(b + 2) : next_pair;
+      pending_u = a ? uy[b + 1] : pending_u;
+      if (nee && !units_)
+        for_lanes(alive, [&](int l) { pick_light({ux[0][l], uy[0][l]}, p.lane(l), l, lights); });
+    } else {
+      for_lanes(alive, [&](int l) {
+        S& s = *sampler[l];
+        if (nee) {
+          const Vec2 ul = s.get_2d();
+          ul_x.v[l] = ul.x, ul_y.v[l] = ul.y;
+          if (!units_) pick_light(ul, p.lane(l), l, lights);
+        }
+        (void)s.get_1d();  // the lobe number: a diffuse BSDF has one lobe
+        const Vec2 ub = s.get_2d();
+        ub_x.v[l] = ub.x, ub_y.v[l] = ub.y;
+        u_rr.v[l] = s.get_1d();
+      });
+      u_light_x = ul_x.load(), u_light_y = ul_y.load();
+      u_bsdf_x = ub_x.load(), u_bsdf_y = ub_y.load(), u_roulette = u_rr.load();
+    }
     const I8 alive_v = mask_of(alive);
 
     // The diffuse BSDF's sample (DiffuseMaterial::sample in the shading frame).
     const F8 wo_z = lanes::dot(wo, ns);
-    V3 wl = cosine_hemisphere(ub_x.load(), ub_y.load());
+    V3 wl = cosine_hemisphere(u_bsdf_x, u_bsdf_y);
     wl.z = wo_z < 0.0f ? -wl.z : wl.z;
     const I8 same = wo_z * wl.z > 0.0f;
     const F8 bs_pdf = same ? lanes::abs(wl.z) * kInvPi : splat(0.0f);
@@ -528,7 +616,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
     const V3 bs_f = lanes::select(same, f_diffuse, V3{});
 
     if (nee) {
-      const Vertex vertex{p, p_error, ng, ns, f_diffuse, wo_z, ul_x.load(), ul_y.load()};
+      const Vertex vertex{p, p_error, ng, ns, f_diffuse, wo_z, u_light_x, u_light_y};
       const V3 c = light_contribution(vertex, alive, lights, ray, counter);
       radiance = lanes::select(alive_v, radiance + beta * c, radiance);
     }
@@ -547,7 +635,7 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
       for (int l = 0; l < kWidth; ++l) rr[l] = std::pow(r[l], path.rr_exponent_);
     const I8 roulette = (depth + 1 >= path.rr_depth_) & (rr < 1.0f);
     const F8 q = lanes::max(splat(0.05f), 1.0f - rr);
-    go &= ~(roulette & (u_rr.load() < q));
+    go &= ~(roulette & (u_roulette < q));
     beta = lanes::select(go, lanes::select(roulette, nb / (1.0f - q), nb), beta);
     specular = go ? I8{} : specular;
     bsdf_pdf = go ? bs_pdf : bsdf_pdf;

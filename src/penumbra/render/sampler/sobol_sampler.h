@@ -2,6 +2,7 @@
 /// A low-discrepancy sampler: the Owen-scrambled (0,2)-sequence, padded across dimensions.
 #include <cstdint>
 
+#include "penumbra/core/lanes.h"
 #include "penumbra/render/sampler/sampler.h"
 
 namespace penumbra {
@@ -50,7 +51,23 @@ class SobolSampler final : public Sampler {
   }
   std::unique_ptr<Sampler> clone() const override { return std::make_unique<SobolSampler>(*this); }
 
+  /// The first pair of every pixel sample.
+  static constexpr uint32_t kFirstPair = 1;
+  /// For a caller that computes this pixel sample's next values itself, with SobolLanes: the
+  /// next pair get_1d or get_2d would open, and whether get_1d would return a pending value.
+  uint32_t next_pair() const { return dim_; }
+  bool has_pending() const { return has_pending_; }
+  float pending() const { return pending_; }
+  /// Continues after values the caller computed: `pair` is the next pair, and get_1d's pending
+  /// value is `pending_value` when `pending` (the state the draws themselves would have left).
+  void resume(uint32_t pair, bool pending, float pending_value) {
+    dim_ = pair;
+    has_pending_ = pending;
+    pending_ = pending_value;
+  }
+
  private:
+  friend class SobolLanes;
   /// Pairs computed at once: a Cornell box path takes 3 + 3 per vertex, so most paths need one
   /// batch. (Batches of 8, AVX2's width, were no faster in paired Cornell box renders: 0.898-0.915
   /// against 0.908-0.925 Msamples/s.)
@@ -75,12 +92,46 @@ class SobolSampler final : public Sampler {
   uint64_t pixel_hash_ = 0;
   uint32_t index_ = 0;
   uint32_t reversed_index_ = 0;  ///< reverse_bits(index_ << (32 - m)) when spp = 2^m, m > 0
-  uint32_t dim_ = 1;             ///< the next pair
+  uint32_t dim_ = kFirstPair;    ///< the next pair
   uint32_t base_ = 0;            ///< the pair of slot 0
   float x_[kBatch] = {};         ///< per slot: the first Sobol' dimension, scrambled
   float y_[kBatch] = {};         ///< per slot: the second
   float pending_ = 0;            ///< the second value of the pair the last get_1d opened
   bool has_pending_ = false;     ///< pending_ is not used yet
+};
+
+/// The pairs of eight SobolSampler pixel samples at once, one sample per lane: compute gives
+/// lane k the values that get_2d returns for pair d[k] of the sample whose keys the lane holds,
+/// in one vector batch. A sampler's own batch computes 16 consecutive pairs of one sample, of
+/// which a short path draws about half; a caller that shades eight paths at once (PathLanes)
+/// computes just the pairs its paths draw, and takes them as vectors. All lanes share the
+/// samples per pixel.
+class SobolLanes {
+ public:
+  static constexpr int kWidth = 8;
+  explicit SobolLanes(const SobolSampler& s) : log2_spp_(s.log2_spp_), spp_(uint32_t(s.spp_)) {}
+  /// Lane k takes the keys of the current pixel sample of s (same samples per pixel).
+  void set(int k, const SobolSampler& s) {
+    lo_[k] = uint32_t(s.pixel_hash_), hi_[k] = uint32_t(s.pixel_hash_ >> 32);
+    reversed_[k] = s.reversed_index_, index_[k] = s.index_;
+  }
+  /// Lane k of x and y: pair pair[k] of the sample in lane lane[k] (taken modulo 8), so that a
+  /// few lanes' pairs fill one vector. Lanes never set give some sample's values.
+  void compute(lanes::U8 lane, lanes::U8 pair, lanes::F8& x, lanes::F8& y) const;
+  /// Lane k of x[j] and y[j], j < 3: pair first[k] + j of lane k's own sample, the three in one
+  /// go (their dependency chains overlap).
+  void compute3(lanes::U8 first, lanes::F8 (&x)[3], lanes::F8 (&y)[3]) const;
+
+ private:
+  static lanes::U8 load(const uint32_t* p) {
+    lanes::U8 v;
+    __builtin_memcpy(&v, p, sizeof v);
+    return v;
+  }
+  alignas(32) uint32_t lo_[kWidth] = {}, hi_[kWidth] = {}, reversed_[kWidth] = {};
+  alignas(32) uint32_t index_[kWidth] = {};
+  int log2_spp_;
+  uint32_t spp_;
 };
 
 }  // namespace penumbra
