@@ -100,12 +100,12 @@ class SobolSampler final : public Sampler {
   bool has_pending_ = false;     ///< pending_ is not used yet
 };
 
-/// The pairs of eight SobolSampler pixel samples at once, one sample per lane: compute gives
-/// lane k the values that get_2d returns for pair d[k] of the sample whose keys the lane holds,
-/// in one vector batch. A sampler's own batch computes 16 consecutive pairs of one sample, of
-/// which a short path draws about half; a caller that shades eight paths at once (PathLanes)
-/// computes just the pairs its paths draw, and takes them as vectors. All lanes share the
-/// samples per pixel.
+/// The pairs of eight SobolSampler pixel samples at once, one sample per lane (its keys taken by
+/// set): each call gives, per vector lane, the values that get_2d returns for some pair of some
+/// lane's sample, eight in one vector batch. A sampler's own batch computes 16 consecutive pairs
+/// of one sample, of which a short path draws about half; a caller that shades eight paths at
+/// once (PathLanes) computes just the pairs its paths draw, and takes them as vectors. All
+/// lanes share the samples per pixel.
 class SobolLanes {
  public:
   static constexpr int kWidth = 8;
