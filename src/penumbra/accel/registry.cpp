@@ -87,7 +87,8 @@ const Registry<Factory>& registry() {
        create<Octree>},
       {"bvh4", "4-wide BVH (bvh:width=4) collapsed from the binary one, SIMD box tests",
        create<WideBvh<4>>},
-      {"kdtree", "kd-tree, O(N log N) SAH build with perfect splits (sah|median|gap, ct=1, ci=0.2)",
+      {"kdtree",
+       "kd-tree, O(N log N) SAH build with perfect splits (sah|median|gap, ct=1, ci=0.4 per block)",
        create<KdTree>},
   };
   return all;
