@@ -45,13 +45,8 @@ RenderStats RenderJob::run() {
 
 Ray RenderJob::camera_ray(Sampler& s, int x, int y, int index, float& filter_weight) const {
   s.start_pixel_sample(x, y, index);
-  const FilterSample fs = filter_sampler->sample(s.get_pixel_2d());
-  CameraSample cs;
-  cs.film = {float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y};
-  cs.lens = s.get_2d();
-  cs.time = s.get_1d();
-  filter_weight = fs.weight;
-  return camera->generate_ray(cs);
+  const Vec2 u_pixel = s.get_pixel_2d(), u_lens = s.get_2d();  // in this order
+  return camera->generate_ray(camera_sample(x, y, u_pixel, u_lens, s.get_1d(), filter_weight));
 }
 
 }  // namespace penumbra

@@ -39,6 +39,18 @@ class RenderJob {
   /// a fixed order (pixel offset, lens, time) before the integrator's; `filter_weight` receives
   /// the reconstruction filter's weight of the sample.
   Ray camera_ray(Sampler& s, int x, int y, int index, float& filter_weight) const;
+  /// The camera sample of pixel (x, y) from its numbers (pixel offset, lens, time), as
+  /// camera_ray makes it: for a caller that draws the numbers itself (path's lanes).
+  CameraSample camera_sample(int x, int y, Vec2 u_pixel, Vec2 u_lens, float u_time,
+                             float& filter_weight) const {
+    const FilterSample fs = filter_sampler->sample(u_pixel);
+    CameraSample cs;
+    cs.film = {float(x) + 0.5f + fs.offset.x, float(y) + 0.5f + fs.offset.y};
+    cs.lens = u_lens;
+    cs.time = u_time;
+    filter_weight = fs.weight;
+    return cs;
+  }
   /// Passes a warning to options.on_warning, when set.
   void warn(const std::string& message) const {
     if (options.on_warning) options.on_warning(message);

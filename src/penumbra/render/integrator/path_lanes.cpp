@@ -79,6 +79,11 @@ void set_rgb(V3& v, int i, Rgb c) {
   return {dx, dy, z};
 }
 
+/// True for the light units the lanes sample themselves: triangles and parallelograms.
+bool planar(const AreaLight::Unit& u) {
+  return u.kind == AreaLight::UnitKind::kTriangle || u.kind == AreaLight::UnitKind::kParallelogram;
+}
+
 /// True for the material the lanes shade themselves: an untextured diffuse one.
 bool plain_diffuse(const Material& m) {
   return typeid(m) == typeid(DiffuseMaterial) && !m.textured();
@@ -109,9 +114,7 @@ std::unique_ptr<PathLanes> PathLanes::make(const PathIntegrator& path, const Wor
       const auto* area = dynamic_cast<const AreaLight*>(light);
       if (!area) return nullptr;
       for (size_t i = 0; i < area->unit_count(); ++i)
-        if (area->unit(i).kind != AreaLight::UnitKind::kTriangle &&
-            area->unit(i).kind != AreaLight::UnitKind::kParallelogram)
-          return nullptr;
+        if (!planar(area->unit(i))) return nullptr;
     }
   }
   return std::unique_ptr<PathLanes>(new PathLanes(path, world));
@@ -127,9 +130,10 @@ PathLanes::PathLanes(const PathIntegrator& path, const World& world) : path_(pat
     auto t = std::make_unique<PlanarUnits>();
     for (size_t i = 0; i < area->unit_count(); ++i) {
       const AreaLight::Unit& u = area->unit(i);
-      if (u.kind != AreaLight::UnitKind::kTriangle && u.kind != AreaLight::UnitKind::kParallelogram)
+      if (!planar(u)) {
         t.reset();
-      if (!t) break;
+        break;
+      }
       t->cdf.push_back(area->unit_cdf(i)), t->cdf_lo.push_back(area->unit_cdf_lo(i));
       t->inv_pmf.push_back(area->unit_inv_pmf(i)), t->pmf.push_back(area->unit_pmf(i));
       t->area.push_back(u.area);
@@ -198,8 +202,7 @@ void PathLanes::pick_light(Vec2 u, Vec3 p, int l, LightLanes& ll) const {
   if (area && area->unit_count() > 0) {
     const AreaLight::Picked pk = area->pick(rest);
     const AreaLight::Unit& unit = area->unit(pk.unit);
-    if (unit.kind == AreaLight::UnitKind::kTriangle ||
-        unit.kind == AreaLight::UnitKind::kParallelogram) {
+    if (planar(unit)) {
       ll.planar |= 1u << l;
       ll.o.set(l, unit.o), ll.e1.set(l, unit.e1), ll.e2.set(l, unit.e2), ll.n.set(l, unit.n);
       ll.area.v[l] = unit.area, ll.rest.v[l] = pk.u, ll.unit_pmf.v[l] = area->unit_pmf(pk.unit);
@@ -393,12 +396,8 @@ void PathLanes::run(RenderJob& job, int x0, int y0, int x1, int y1, int first, i
   // known; a pinhole camera's rays are finished eight at once below.
   const auto start_camera_ray = [&](int l, Vec2 u_pixel, Vec2 u_lens, float u_time,
                                     Pending& pending) {
-    const FilterSample fs = job.filter_sampler->sample(u_pixel);
-    CameraSample cs;
-    cs.film = {float(pending.x) + 0.5f + fs.offset.x, float(pending.y) + 0.5f + fs.offset.y};
-    cs.lens = u_lens;
-    cs.time = u_time;
-    pending.weight = fs.weight;
+    const CameraSample cs =
+        job.camera_sample(pending.x, pending.y, u_pixel, u_lens, u_time, pending.weight);
     if (pinhole)
       camera_dir.set(l, pinhole->camera_direction(cs.film)), camera_u.v[l] = cs.time;
     else

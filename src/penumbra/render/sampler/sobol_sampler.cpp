@@ -32,9 +32,8 @@ uint32_t shuffled_index(int log2_spp, uint32_t spp, uint32_t index, uint32_t rev
 
 /// Pair d of the pixel sample with hash halves lo_key and hi_key, one value at a time: the
 /// definition that the vector batches reproduce.
-[[maybe_unused]] void pair_value(uint32_t d, uint32_t lo_key, uint32_t hi_key, int log2_spp,
-                                 uint32_t spp, uint32_t index, uint32_t reversed_index, float& x,
-                                 float& y) {
+void pair_value(uint32_t d, uint32_t lo_key, uint32_t hi_key, int log2_spp, uint32_t spp,
+                uint32_t index, uint32_t reversed_index, float& x, float& y) {
   const uint32_t lo = mix32(lo_key + d * kGolden32);
   const uint32_t hi = mix32(hi_key + d * kGolden32);
   const uint32_t yk = mix32(hi_key + d * kGolden32 + kSecondKey);
@@ -165,25 +164,9 @@ void SobolSampler::fill_batch() {
     return;
   }
 #endif
-  // pair_value, one step at a time for the whole batch: loops the compiler vectorises.
-  uint32_t lo[kBatch], hi[kBatch], yk[kBatch], idx[kBatch];
-  for (uint32_t k = 0; k < kBatch; ++k) lo[k] = mix32(lo_key + (base_ + k) * kGolden32);
-  for (uint32_t k = 0; k < kBatch; ++k) hi[k] = mix32(hi_key + (base_ + k) * kGolden32);
   for (uint32_t k = 0; k < kBatch; ++k)
-    yk[k] = mix32(hi_key + (base_ + k) * kGolden32 + kSecondKey);
-  if (log2_spp_ > 0) {
-    const uint32_t shift = 32 - uint32_t(log2_spp_);
-    for (uint32_t k = 0; k < kBatch; ++k)
-      idx[k] = reverse_bits(laine_karras_permutation(reversed_index_, lo[k])) >> shift;
-  } else {
-    for (uint32_t k = 0; k < kBatch; ++k) idx[k] = shuffled(lo[k]);
-  }
-  for (uint32_t k = 0; k < kBatch; ++k) {
-    const uint32_t vx = owen_scrambled_dim0(idx[k], hi[k]);
-    const uint32_t vy = owen_scrambled_dim1(idx[k], yk[k]);
-    x_[k] = float(int32_t(vx >> 8)) * 0x1p-24f;
-    y_[k] = float(int32_t(vy >> 8)) * 0x1p-24f;
-  }
+    pair_value(base_ + k, lo_key, hi_key, log2_spp_, uint32_t(spp_), index_, reversed_index_, x_[k],
+               y_[k]);
 }
 
 using lanes::F8;
