@@ -197,14 +197,6 @@ std::vector<std::string> check(const Accelerator& accel, const Case& c) {
   return out;
 }
 
-/// Registered structures other than the reference itself.
-std::vector<std::string> structure_names() {
-  std::vector<std::string> names;
-  for (const auto& info : accelerator_list())
-    if (info.name != "brute") names.push_back(info.name);
-  return names;
-}
-
 class AccelDifferential : public ::testing::TestWithParam<std::string> {
  protected:
   void run_family(const std::string& name) {

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "penumbra/accel/registry.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/core/transform.h"
 #include "penumbra/geometry/sphere_direction.h"
@@ -441,6 +442,13 @@ std::vector<Ray> mixed_rays(const PrimitiveSet& prims, size_t n, uint64_t seed) 
 }  // namespace penumbra::test
 
 namespace penumbra::test {
+
+std::vector<std::string> structure_names() {
+  std::vector<std::string> names;
+  for (const auto& info : accelerator_list())
+    if (info.name != "brute") names.push_back(info.name);
+  return names;
+}
 
 std::string structure_test_name(const std::string& name) {
   std::string s = name;

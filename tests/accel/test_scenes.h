@@ -69,6 +69,8 @@ void trace_both(const Accelerator& a, const Accelerator& b, const std::vector<Ra
 /// A structure's figure `key` from AccelStats::extra (a test failure when it reports none).
 double extra_stat(const Accelerator& acc, const std::string& key);
 
+/// Registered structures other than the reference, `brute`.
+std::vector<std::string> structure_names();
 /// A structure's name made a valid test name (every character but letters and digits as '_'),
 /// for INSTANTIATE_TEST_SUITE_P over the registry.
 std::string structure_test_name(const std::string& name);

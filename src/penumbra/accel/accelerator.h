@@ -2,6 +2,8 @@
 /// The interface every spatial data structure for ray shooting implements.
 #include <cstddef>
 #include <memory>
+#include <cstdint>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -42,6 +44,16 @@ class Accelerator {
   virtual bool intersect(const Ray& ray, Hit& hit) const = 0;
   /// True when anything is hit on (ray.tmin, ray.tmax).
   virtual bool occluded(const Ray& ray) const = 0;
+  /// intersect(rays[i], hits[i]) for every i, with the same results bit for bit; a structure
+  /// may alternate between the rays' traversals to overlap their memory accesses (WideBvh).
+  /// `hits` has the size of `rays`.
+  virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
+    for (size_t i = 0; i < rays.size(); ++i) intersect(rays[i], hits[i]);
+  }
+  /// out[i] = occluded(rays[i]) for every i, as intersect_batch. `out` has the size of `rays`.
+  virtual void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out) const {
+    for (size_t i = 0; i < rays.size(); ++i) out[i] = occluded(rays[i]);
+  }
   /// intersect, adding to `cost` the nodes it visited and the primitives it tested (the same
   /// traversal as intersect, instantiated with counting; intersect itself counts nothing).
   virtual bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const = 0;

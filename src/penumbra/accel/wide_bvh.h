@@ -8,7 +8,10 @@
 ///
 /// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
 /// collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h, the default, or
-/// largest-area opening); the 8-wide one also nodes=full|compressed (the node layout) and
+/// largest-area opening); interleave=auto|on|off (whether batch queries, intersect_batch and
+/// occluded_batch, alternate between 8 rays' traversals a node at a time, so that each ray's
+/// next node loads while the others work; auto: when the structure exceeds 16 MiB, where the
+/// loads miss the caches); the 8-wide one also nodes=full|compressed (the node layout) and
 /// order=distance|octant (how closest-hit rays order the children they visit).
 #include <string>
 #include <vector>
@@ -23,6 +26,9 @@
 
 namespace penumbra {
 
+template <int W>
+struct WideBoxRay;
+
 /// Wide BVH of width W (4 or 8) with nodes of type Node (WideNode<W>, or CompressedNode for 8).
 template <int W, class Node = WideNode<W>>
 class WideBvh final : public Accelerator {
@@ -35,6 +41,9 @@ class WideBvh final : public Accelerator {
   bool occluded(const Ray& ray) const override;
   bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
+  /// With interleaving on, the rays' traversals alternate a node at a time (interleave()).
+  void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const override;
+  void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out) const override;
 
   /// The nodes, root first.
   std::span<const Node> nodes() const { return {nodes_.data(), nodes_.size()}; }
@@ -43,6 +52,34 @@ class WideBvh final : public Accelerator {
   /// kOctant: closest-hit rays visit children in the octant order (order=octant).
   template <bool kAnyHit, bool kTriangles, bool kOctant = false, class Cost = NoCost>
   bool traverse(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
+  /// Traversal stack entries: kBvhStackSize levels of W - 1 deferred children, and W more.
+  static constexpr int kStackSize = kBvhStackSize * (W - 1) + W;
+  struct StackEntry {  ///< a deferred child: its (child, count) payload and entry distance
+    uint32_t child, count;
+    float t;
+  };
+  struct Walk;
+  /// References to a traversal's state (a Walk's members, or a single ray's locals).
+  struct WalkAt {
+    uint32_t& child;
+    uint32_t& count;
+    int& sp;
+    bool& found;
+    StackEntry* stack;
+  };
+  /// One node or leaf of a ray's traversal `w`; true when the query is done (w.found: a hit).
+  /// kInterleaved: the ray alternates with others, so it prefetches where it goes next.
+  template <bool kAnyHit, bool kTriangles, bool kOctant, bool kInterleaved, class Cost>
+  bool step(const Node* nodes, const WideBoxRay<W>& b, const PreparedRay& pr, Hit& hit, WalkAt w,
+            Cost cost) const;
+  /// The batch queries' rays in flight at once.
+  static constexpr int kInterleave = 8;
+  /// A batch through interleave() or one ray at a time (interleave=0); kAnyHit: into `blocked`.
+  template <bool kAnyHit>
+  void batch(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> blocked) const;
+  /// The rays of a batch traversed kInterleave at a time, a step of each in turn.
+  template <bool kAnyHit, bool kTriangles, bool kOctant>
+  void interleave(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> blocked) const;
   /// Closest hit of `pr` in the order the tree was built for.
   template <class Cost = NoCost>
   bool closest(const PreparedRay& pr, Hit& hit, Cost cost = {}) const;
@@ -58,6 +95,11 @@ class WideBvh final : public Accelerator {
   /// order=octant: closest-hit rays visit the children a node's test keeps in the order of the
   /// ray's octant (slots laid out for it by the collapse) instead of by entry distance.
   bool octant_order_ = false;
+  /// interleave=on|off|auto (1, 0, -1): batch queries interleave their rays; auto: when the
+  /// structure takes more than kInterleaveBytes, beyond what the caches hold.
+  int interleave_mode_ = -1;
+  bool interleave_ = false;  ///< the build's outcome of interleave_mode_
+  static constexpr size_t kInterleaveBytes = size_t(16) << 20;
   const PrimitiveSet* prims_ = nullptr;
   std::vector<Node, ArrayAllocator<Node>> nodes_;
   LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle
