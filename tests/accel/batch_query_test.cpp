@@ -28,7 +28,7 @@ std::vector<Ray> batch_rays(const PrimitiveSet& prims, size_t n, uint64_t seed) 
 }
 
 /// Counts the rays whose batch answers differ in any bit from the single queries', the rays cut
-/// into batches of 0, 1, 7, 8, 9 and 64 rays, then one of the rest.
+/// into batches of 0, 1, 7, 8, 9, 64 and 200 rays (that one coherent), then one of the rest.
 size_t batch_differences(const Accelerator& accel, const std::vector<Ray>& rays) {
   std::vector<Hit> single(rays.size());
   std::vector<uint8_t> single_blocked(rays.size());
@@ -43,11 +43,13 @@ size_t batch_differences(const Accelerator& accel, const std::vector<Ray>& rays)
   std::vector<uint8_t> blocked(rays.size(), 2);
   const std::span<const Ray> all(rays);
   size_t begin = 0;
-  for (const size_t size : {size_t(0), size_t(1), size_t(7), size_t(8), size_t(9), size_t(64),
-                            rays.size()}) {
-    const size_t n = std::min(size, rays.size() - begin);
-    accel.intersect_batch(all.subspan(begin, n), std::span<Hit>(hits).subspan(begin, n));
-    accel.occluded_batch(all.subspan(begin, n), std::span<uint8_t>(blocked).subspan(begin, n));
+  const size_t sizes[] = {0, 1, 7, 8, 9, 64, 200, rays.size()};
+  for (size_t k = 0; k < std::size(sizes); ++k) {
+    const size_t n = std::min(sizes[k], rays.size() - begin);
+    const BatchOrder order = k == 6 ? BatchOrder::kCoherent : BatchOrder::kIncoherent;
+    accel.intersect_batch(all.subspan(begin, n), std::span<Hit>(hits).subspan(begin, n), order);
+    accel.occluded_batch(all.subspan(begin, n), std::span<uint8_t>(blocked).subspan(begin, n),
+                         order);
     begin += n;
   }
   const auto bits = [](float x) { return std::bit_cast<uint32_t>(x); };

@@ -183,6 +183,30 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   EXPECT_NE(err_.find("valid:"), std::string::npos) << err_;
 }
 
+// --batch traces through the batch queries (and Embree's stream API): the JSON says so, and the
+// incoherent hits are the single queries' (the same count of differences from Embree's).
+TEST_F(CliTest, AccelBenchBatchQueriesFindTheSingleQueriesHits) {
+  const std::string common = "accel-bench " + scene("meshes/bunny.obj") +
+                             " --accel bvh:interleave=on --threads 1 --repeat 1 --rays 3000 "
+                             "--image 32 --json ";
+  ASSERT_EQ(run(common + path("single.json")), 0) << err_;
+  ASSERT_EQ(run(common + path("batch.json") + " --batch"), 0) << err_;
+  EXPECT_NE(out_.find("batch queries"), std::string::npos) << out_;
+  const auto single = nlohmann::json::parse(slurp(path("single.json")));
+  const auto batch = nlohmann::json::parse(slurp(path("batch.json")));
+  ASSERT_EQ(single.size(), batch.size());
+  for (size_t r = 0; r < batch.size(); ++r) {
+    EXPECT_EQ(single[r]["queries"], "single");
+    EXPECT_EQ(batch[r]["queries"], "batch");
+    if (batch[r]["accel"] == "embree") continue;
+    EXPECT_EQ(batch[r]["interleaved batches"], 1.0);
+    EXPECT_GT(batch[r]["runs"][0]["incoherent_mrays"].get<double>(), 0.0);
+    if (batch[r].contains("embree_mismatches")) {
+      EXPECT_EQ(batch[r]["embree_mismatches"], single[r]["embree_mismatches"]);
+    }
+  }
+}
+
 // Meshes that would give NaN statistics or trip Embree are refused before any build, naming
 // the file and the vertex; collide checks its meshes the same way.
 TEST_F(CliTest, AccelBenchAndCollideRefuseEmptyAndOutOfRangeMeshes) {

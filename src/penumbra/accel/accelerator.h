@@ -30,6 +30,11 @@ struct AccelStats {
   double mean_prims_per_leaf() const { return leaves ? double(prim_refs) / double(leaves) : 0.0; }
 };
 
+/// What a batch of rays is like: neighbours in the batch following nearly the same path through
+/// a structure (camera rays in pixel order, and rays starting at their hits), or not. Interleaving
+/// pays for the latter and not the former (docs/accel.md, "Batch queries").
+enum class BatchOrder { kIncoherent, kCoherent };
+
 /// A spatial data structure over a PrimitiveSet, answering closest-hit and any-hit queries.
 /// The primitive set must outlive the structure. Queries are const and thread-safe.
 class Accelerator {
@@ -45,13 +50,17 @@ class Accelerator {
   /// True when anything is hit on (ray.tmin, ray.tmax).
   virtual bool occluded(const Ray& ray) const = 0;
   /// intersect(rays[i], hits[i]) for every i, with the same results bit for bit; a structure
-  /// may alternate between the rays' traversals to overlap their memory accesses (WideBvh).
-  /// `hits` has the size of `rays`.
-  virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
+  /// may alternate between the rays' traversals to overlap their memory accesses (WideBvh does
+  /// for incoherent batches). `hits` has the size of `rays`.
+  virtual void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
+                               BatchOrder order) const {
+    (void)order;
     for (size_t i = 0; i < rays.size(); ++i) intersect(rays[i], hits[i]);
   }
   /// out[i] = occluded(rays[i]) for every i, as intersect_batch. `out` has the size of `rays`.
-  virtual void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out) const {
+  virtual void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out,
+                              BatchOrder order) const {
+    (void)order;
     for (size_t i = 0; i < rays.size(); ++i) out[i] = occluded(rays[i]);
   }
   /// intersect, adding to `cost` the nodes it visited and the primitives it tested (the same

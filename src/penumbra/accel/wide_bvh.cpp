@@ -594,6 +594,7 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
   const Node* const nodes = nodes_.data();
   struct Slot {
     PreparedRay pr{Ray{}};
+    WideBoxRay<W> box{pr};
     size_t index = 0;
   };
   Walk walks[kInterleave];
@@ -609,7 +610,9 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
       h.t = rays[i].tmax;
       if constexpr (kAnyHit) blocked[i] = 0;
       if (!traceable(rays[i])) continue;
-      slot[k] = {PreparedRay(rays[i]), i};
+      slot[k].pr = PreparedRay(rays[i]);
+      slot[k].box = WideBoxRay<W>(slot[k].pr);
+      slot[k].index = i;
       walks[k].child = 0, walks[k].count = 0, walks[k].sp = 0, walks[k].found = false;
       __builtin_prefetch(nodes[0].child);
       return true;
@@ -623,7 +626,7 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
       const WalkAt at{w.child, w.count, w.sp, w.found, w.stack};
       const PreparedRay& pr = slot[k].pr;
       const size_t i = slot[k].index;
-      if (!step<kAnyHit, kTriangles, kOctant, true>(nodes, WideBoxRay<W>(pr), pr, hits[i], at,
+      if (!step<kAnyHit, kTriangles, kOctant, true>(nodes, slot[k].box, pr, hits[i], at,
                                                     NoCost{})) {
         ++k;
         continue;
@@ -645,8 +648,11 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
 template <int W, class Node>
 template <bool kAnyHit>
 void WideBvh<W, Node>::batch(std::span<const Ray> rays, std::span<Hit> hits,
-                             std::span<uint8_t> blocked) const {
-  const bool interleaved = interleave_ && !nodes_.empty();
+                             std::span<uint8_t> blocked, BatchOrder order) const {
+  // Coherent rays go one at a time: interleaved, neighbours that would find the same nodes in
+  // the caches and the same branches predicted scramble both (terrain, primary rays 1.04 ->
+  // 0.80 x Embree).
+  const bool interleaved = interleave_ && order == BatchOrder::kIncoherent && !nodes_.empty();
   if (interleaved && blocks_.size())
     return octant_order_ && !kAnyHit ? interleave<kAnyHit, true, true>(rays, hits, blocked)
                                      : interleave<kAnyHit, true, false>(rays, hits, blocked);
@@ -662,19 +668,21 @@ void WideBvh<W, Node>::batch(std::span<const Ray> rays, std::span<Hit> hits,
 }
 
 template <int W, class Node>
-void WideBvh<W, Node>::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const {
-  batch<false>(rays, hits, {});
+void WideBvh<W, Node>::intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
+                                       BatchOrder order) const {
+  batch<false>(rays, hits, {}, order);
 }
 
 template <int W, class Node>
-void WideBvh<W, Node>::occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out) const {
+void WideBvh<W, Node>::occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out,
+                                      BatchOrder order) const {
   // Any-hit traversal needs a running hit record per ray: kept in a small buffer, a chunk of
   // rays at a time.
   constexpr size_t kChunk = 256;
   Hit scratch[kChunk];
   for (size_t begin = 0; begin < rays.size(); begin += kChunk) {
     const size_t n = std::min(kChunk, rays.size() - begin);
-    batch<true>(rays.subspan(begin, n), std::span<Hit>(scratch, n), out.subspan(begin, n));
+    batch<true>(rays.subspan(begin, n), std::span<Hit>(scratch, n), out.subspan(begin, n), order);
   }
 }
 

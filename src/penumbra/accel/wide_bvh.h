@@ -41,9 +41,12 @@ class WideBvh final : public Accelerator {
   bool occluded(const Ray& ray) const override;
   bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
-  /// With interleaving on, the rays' traversals alternate a node at a time (interleave()).
-  void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits) const override;
-  void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out) const override;
+  /// Incoherent batches with interleaving on alternate between their rays' traversals, a node
+  /// at a time (interleave()); the others go one ray at a time.
+  void intersect_batch(std::span<const Ray> rays, std::span<Hit> hits,
+                       BatchOrder order) const override;
+  void occluded_batch(std::span<const Ray> rays, std::span<uint8_t> out,
+                      BatchOrder order) const override;
 
   /// The nodes, root first.
   std::span<const Node> nodes() const { return {nodes_.data(), nodes_.size()}; }
@@ -74,9 +77,10 @@ class WideBvh final : public Accelerator {
             Cost cost) const;
   /// The batch queries' rays in flight at once.
   static constexpr int kInterleave = 8;
-  /// A batch through interleave() or one ray at a time (interleave=0); kAnyHit: into `blocked`.
+  /// A batch through interleave() or one ray at a time; kAnyHit: into `blocked`.
   template <bool kAnyHit>
-  void batch(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> blocked) const;
+  void batch(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> blocked,
+             BatchOrder order) const;
   /// The rays of a batch traversed kInterleave at a time, a step of each in turn.
   template <bool kAnyHit, bool kTriangles, bool kOctant>
   void interleave(std::span<const Ray> rays, std::span<Hit> hits, std::span<uint8_t> blocked) const;

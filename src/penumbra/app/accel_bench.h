@@ -25,6 +25,8 @@ struct AccelBenchArgs {
   /// with one of Embree's chunk by chunk (131,072 rays), and the ratios are the medians over runs
   /// (robust to the load of a shared machine changing during the benchmark).
   int repeat = 3;
+  /// Trace through the batch queries against Embree's stream API (--batch).
+  bool batch = false;
 };
 
 /// Registers the `accel-bench` subcommand on `app`.

@@ -25,7 +25,8 @@ std::string or_dash(const std::optional<T>& v, const char* format) {
 
 }  // namespace
 
-void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat) {
+void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat,
+                       bool batch) {
   if (rows.empty()) return;
   // Group titles over the throughput columns, then the column names.
   const std::string lead =
@@ -80,10 +81,15 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
       " hits differing from Embree's, hit vs miss or t beyond 1e-4 relative; ties: same t,\n"
       " another triangle)\n",
       thread_label(build_threads), repeat);
+  if (batch)
+    fmt::print(
+        "(batch queries: intersect_batch and occluded_batch over each thread's share of a\n"
+        " chunk, against Embree's rtcIntersect1M and rtcOccluded1M: Embree's coherent mode for\n"
+        " the primary rays, our interleaving for the incoherent and occlusion rays)\n");
 }
 
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
-                      const std::string& mesh, size_t triangles, int build_threads) {
+                      const std::string& mesh, size_t triangles, int build_threads, bool batch) {
   nlohmann::json out = nlohmann::json::array();
   for (const BenchRow& r : rows) {
     nlohmann::json runs = nlohmann::json::array();
@@ -107,6 +113,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
                         {"triangles", triangles},
                         {"build_ms", r.build_ms},
                         {"build_threads", build_threads},
+                        {"queries", batch ? "batch" : "single"},
                         {"bytes", r.bytes},
                         {"runs", runs}};
     if (r.nodes) o["nodes"] = *r.nodes;

@@ -41,12 +41,15 @@ struct BenchRow {
 /// Prints the table: build ms (at `build_threads`), MiB, nodes, depth, refs/prim, then primary,
 /// incoherent, occlusion, bounce and shadow Mrays/s and the incoherent ratio to Embree for each
 /// thread count, then the ratios to Embree of the other four,
-/// then the comparison of hits with Embree's; `repeat` runs gave each median.
-void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat);
+/// then the comparison of hits with Embree's; `repeat` runs gave each median. `batch`: the rates
+/// are of batch queries against Embree's stream API (accel-bench --batch).
+void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat,
+                       bool batch = false);
 
-/// Writes `rows` to `path` as a JSON array of objects (keys in docs/accel.md); throws Error when
-/// the file cannot be written.
+/// Writes `rows` to `path` as a JSON array of objects (keys in docs/accel.md; `queries`:
+/// "batch" or "single"); throws Error when the file cannot be written.
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
-                      const std::string& mesh, size_t triangles, int build_threads);
+                      const std::string& mesh, size_t triangles, int build_threads,
+                      bool batch = false);
 
 }  // namespace penumbra::app

@@ -3,6 +3,7 @@
 #include "penumbra/core/error.h"
 
 #ifdef PENUMBRA_HAVE_EMBREE
+#include <algorithm>
 #include <atomic>
 #include <vector>
 
@@ -104,6 +105,51 @@ bool EmbreeScene::occluded(const Ray& ray) const {
   return r.tfar < 0.0f;  // Embree sets tfar to -inf on occlusion
 }
 
+namespace {
+/// Rays per call of Embree's stream API.
+constexpr size_t kStreamChunk = 256;
+RTCRay to_embree(const Ray& ray) {
+  return {ray.o.x, ray.o.y, ray.o.z, ray.tmin, ray.d.x, ray.d.y, ray.d.z, 0.0f, ray.tmax, ~0u, 0, 0};
+}
+}  // namespace
+
+void EmbreeScene::intersect_stream(std::span<const Ray> rays, std::span<Hit> hits,
+                                   bool coherent) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  alignas(64) RTCRayHit rh[kStreamChunk];
+  for (size_t begin = 0; begin < rays.size(); begin += kStreamChunk) {
+    const size_t n = std::min(kStreamChunk, rays.size() - begin);
+    for (size_t i = 0; i < n; ++i) {
+      rh[i].ray = to_embree(rays[begin + i]);
+      rh[i].hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh[i].hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect1M(impl_->scene, &ctx, rh, unsigned(n), sizeof(RTCRayHit));
+    for (size_t i = 0; i < n; ++i) {
+      Hit& hit = hits[begin + i];
+      hit = Hit{};
+      if (rh[i].hit.geomID != RTC_INVALID_GEOMETRY_ID)
+        hit = {rh[i].ray.tfar, rh[i].hit.u, rh[i].hit.v, rh[i].hit.primID};
+    }
+  }
+}
+
+void EmbreeScene::occluded_stream(std::span<const Ray> rays, std::span<uint8_t> out,
+                                  bool coherent) const {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  alignas(64) RTCRay r[kStreamChunk];
+  for (size_t begin = 0; begin < rays.size(); begin += kStreamChunk) {
+    const size_t n = std::min(kStreamChunk, rays.size() - begin);
+    for (size_t i = 0; i < n; ++i) r[i] = to_embree(rays[begin + i]);
+    rtcOccluded1M(impl_->scene, &ctx, r, unsigned(n), sizeof(RTCRay));
+    for (size_t i = 0; i < n; ++i) out[begin + i] = r[i].tfar < 0.0f;
+  }
+}
+
 #else
 
 bool have_embree() {
@@ -126,6 +172,8 @@ bool EmbreeScene::intersect(const Ray&, Hit&) const {
 bool EmbreeScene::occluded(const Ray&) const {
   return false;
 }
+void EmbreeScene::intersect_stream(std::span<const Ray>, std::span<Hit>, bool) const {}
+void EmbreeScene::occluded_stream(std::span<const Ray>, std::span<uint8_t>, bool) const {}
 
 #endif
 

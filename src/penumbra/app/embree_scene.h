@@ -2,7 +2,9 @@
 /// An Embree 3 scene over a triangle mesh: the external reference accel-bench compares against.
 /// Available only when built with PENUMBRA_HAVE_EMBREE (Debian's libembree-dev).
 #include <cstddef>
+#include <cstdint>
 #include <memory>
+#include <span>
 
 #include "penumbra/core/ray.h"
 #include "penumbra/geometry/hit.h"
@@ -31,6 +33,11 @@ class EmbreeScene {
   bool intersect(const Ray& ray, Hit& hit) const;
   /// True when anything is hit on [tmin, tmax].
   bool occluded(const Ray& ray) const;
+  /// intersect of every ray, through Embree's stream API (rtcIntersect1M, 256 rays per call;
+  /// `coherent` sets RTC_INTERSECT_CONTEXT_FLAG_COHERENT, else INCOHERENT).
+  void intersect_stream(std::span<const Ray> rays, std::span<Hit> hits, bool coherent) const;
+  /// occluded of every ray into `out` (1: occluded), through rtcOccluded1M.
+  void occluded_stream(std::span<const Ray> rays, std::span<uint8_t> out, bool coherent) const;
 
  private:
   struct Impl;
