@@ -133,13 +133,24 @@ double timed(const std::vector<Ray>& rays, const F& trace, const G* other, doubl
   return s;
 }
 
-/// A side of the benchmark: its closest-hit and any-hit queries over a range of a ray set, the
-/// answers of ray i going to hits[i] and blocked[i].
-template <class Closest, class Any>
+/// A side of the benchmark: its queries of one ray (closest(ray, hit), any(ray)) and of a batch
+/// (closest_batch(rays, hits), any_batch(rays, blocked)); `batch` picks which are timed.
+template <class Closest, class Any, class ClosestBatch, class AnyBatch>
 struct Queries {
-  Closest closest;  ///< closest(rays, first, last, hits)
-  Any any;          ///< any(rays, first, last, blocked)
+  Closest closest;
+  Any any;
+  ClosestBatch closest_batch;
+  AnyBatch any_batch;
+  bool batch = false;
 };
+template <class C, class A, class CB, class AB>
+Queries<C, A, CB, AB> queries(C c, A a, CB cb, AB ab, bool batch) {
+  return {c, a, cb, ab, batch};
+}
+
+/// Batch queries take kBenchBatch rays at a time, their answers in the caches (as a renderer's
+/// would be) unless kept.
+constexpr size_t kBenchBatch = 256;
 
 /// One run of the ray sets through `side`'s queries at `threads` threads, the incoherent closest
 /// hits going to `hits`; with `embree` given, interleaved chunk by chunk with Embree's, and the
@@ -149,43 +160,57 @@ BenchRates run_once(const RaySets& rays, int threads, const S& side, std::vector
                     const E* embree) {
   const ThreadLimit limit(threads);
   const bool pair = embree != nullptr;
-  const size_t most = std::max({rays.primary.size(), rays.incoherent.size(),
-                                rays.path.bounce.size(), rays.path.shadow.size()});
-  // Answers nobody reads (primary and path rays), one record per ray as a renderer keeps them.
-  std::vector<Hit> scratch(most), embree_hits(pair ? hits.size() : 0), embree_scratch(pair ? most : 0);
-  std::vector<uint8_t> blocked(most), embree_blocked(pair ? most : 0);
+  std::vector<Hit> embree_hits(pair ? hits.size() : 0);
   const auto mrays = [](size_t n, double s) { return double(n) / std::max(s, 1e-9) * 1e-6; };
   BenchRates rates;
   rates.threads = threads;
-  const auto closest_into = [](const auto& q, std::vector<Hit>& out) {
-    return [&q, &out](const std::vector<Ray>& r, size_t b, size_t e) { q.closest(r, b, e, out); };
+  // The timed functions of a side over the rays [b, e) of a set: one query at a time (the
+  // loop the benchmark always had), or batches of kBenchBatch rays.
+  const auto closest = [](const auto* q, Hit* keep) {
+    return [q, keep](const std::vector<Ray>& r, size_t b, size_t e) {
+      if (!q->batch) {
+        for (size_t i = b; i < e; ++i) {
+          Hit h;
+          q->closest(r[i], keep ? keep[i] : h);
+        }
+        return;
+      }
+      Hit own[kBenchBatch];
+      for (size_t s = b; s < e; s += kBenchBatch) {
+        const size_t n = std::min(kBenchBatch, e - s);
+        q->closest_batch(std::span(r).subspan(s, n), std::span(keep ? keep + s : own, n));
+      }
+    };
   };
-  const auto any_into = [](const auto& q, std::vector<uint8_t>& out) {
-    return [&q, &out](const std::vector<Ray>& r, size_t b, size_t e) { q.any(r, b, e, out); };
+  const auto any = [](const auto* q) {
+    return [q](const std::vector<Ray>& r, size_t b, size_t e) {
+      if (!q->batch) {
+        for (size_t i = b; i < e; ++i) q->any(r[i]);
+        return;
+      }
+      uint8_t blocked[kBenchBatch];
+      for (size_t s = b; s < e; s += kBenchBatch) {
+        const size_t n = std::min(kBenchBatch, e - s);
+        q->any_batch(std::span(r).subspan(s, n), std::span(blocked, n));
+      }
+    };
   };
-  const auto ours_scratch = closest_into(side, scratch);
-  const auto ours_hits = closest_into(side, hits);
-  const auto ours_any = any_into(side, blocked);
-  using C = decltype(closest_into(*embree, embree_scratch));
-  using A = decltype(any_into(*embree, embree_blocked));
-  std::optional<C> theirs_scratch, theirs_hits;
-  std::optional<A> theirs_any;
-  if (pair) {
-    theirs_scratch.emplace(closest_into(*embree, embree_scratch));
-    theirs_hits.emplace(closest_into(*embree, embree_hits));
-    theirs_any.emplace(any_into(*embree, embree_blocked));
-  }
-  const C* ts = pair ? &*theirs_scratch : nullptr;
-  const C* th = pair ? &*theirs_hits : nullptr;
-  const A* ta = pair ? &*theirs_any : nullptr;
+  const auto primary = closest(&side, nullptr), incoherent = closest(&side, hits.data());
+  const auto occlusion = any(&side);
+  const auto embree_primary = closest(embree, nullptr);
+  const auto embree_incoherent = closest(embree, embree_hits.data());
+  const auto embree_occlusion = any(embree);
+  const auto* ep_f = pair ? &embree_primary : nullptr;
+  const auto* ei_f = pair ? &embree_incoherent : nullptr;
+  const auto* eo_f = pair ? &embree_occlusion : nullptr;
   double ep = 0, ei = 0, eo = 0, eb = 0, es = 0;
-  rates.primary = mrays(rays.primary.size(), timed(rays.primary, ours_scratch, ts, ep));
+  rates.primary = mrays(rays.primary.size(), timed(rays.primary, primary, ep_f, ep));
   // Fresh hits each run: a closest hit query starts from an empty record.
   std::fill(hits.begin(), hits.end(), Hit{});
-  rates.incoherent = mrays(rays.incoherent.size(), timed(rays.incoherent, ours_hits, th, ei));
-  rates.occlusion = mrays(rays.incoherent.size(), timed(rays.incoherent, ours_any, ta, eo));
-  rates.bounce = mrays(rays.path.bounce.size(), timed(rays.path.bounce, ours_scratch, ts, eb));
-  rates.shadow = mrays(rays.path.shadow.size(), timed(rays.path.shadow, ours_any, ta, es));
+  rates.incoherent = mrays(rays.incoherent.size(), timed(rays.incoherent, incoherent, ei_f, ei));
+  rates.occlusion = mrays(rays.incoherent.size(), timed(rays.incoherent, occlusion, eo_f, eo));
+  rates.bounce = mrays(rays.path.bounce.size(), timed(rays.path.bounce, primary, ep_f, eb));
+  rates.shadow = mrays(rays.path.shadow.size(), timed(rays.path.shadow, occlusion, eo_f, es));
   if (pair) {
     rates.primary_vs_embree = rates.primary / mrays(rays.primary.size(), ep);
     rates.incoherent_vs_embree = rates.incoherent / mrays(rays.incoherent.size(), ei);
@@ -409,28 +434,23 @@ void run_accel_bench(const AccelBenchArgs& args) {
   // pixel order, and the path rays starting at their hits, are coherent enough that their
   // neighbours find the same nodes in the caches (terrain bounce rays 2.99 one by one, 2.69
   // interleaved).
-  const auto coherent = [&](const std::vector<Ray>& r) { return &r == &rays.primary; };
-  const auto order = [&](const std::vector<Ray>& r) {
-    return &r == &rays.incoherent ? BatchOrder::kIncoherent : BatchOrder::kCoherent;
+  const auto in = [](const Ray* r, const std::vector<Ray>& set) {
+    return r >= set.data() && r < set.data() + set.size();
   };
-  const auto embree_closest = [&](const std::vector<Ray>& r, size_t b, size_t e,
-                                  std::vector<Hit>& out) {
-    if (args.batch)
-      embree->intersect_stream(std::span(r).subspan(b, e - b), std::span(out).subspan(b, e - b),
-                               coherent(r));
-    else
-      for (size_t i = b; i < e; ++i) embree->intersect(r[i], out[i]);
+  const auto coherent = [&](const Ray* r) { return in(r, rays.primary); };
+  const auto order = [&](const Ray* r) {
+    return in(r, rays.incoherent) ? BatchOrder::kIncoherent : BatchOrder::kCoherent;
   };
-  const auto embree_any = [&](const std::vector<Ray>& r, size_t b, size_t e,
-                              std::vector<uint8_t>& out) {
-    if (args.batch)
-      embree->occluded_stream(std::span(r).subspan(b, e - b), std::span(out).subspan(b, e - b),
-                              coherent(r));
-    else
-      for (size_t i = b; i < e; ++i) out[i] = embree->occluded(r[i]);
-  };
-  const Queries<decltype(embree_closest), decltype(embree_any)> embree_side{embree_closest,
-                                                                           embree_any};
+  const auto embree_side = queries(
+      [&](const Ray& r, Hit& h) { embree->intersect(r, h); },
+      [&](const Ray& r) { embree->occluded(r); },
+      [&](std::span<const Ray> r, std::span<Hit> h) {
+        embree->intersect_stream(r, h, coherent(r.data()));
+      },
+      [&](std::span<const Ray> r, std::span<uint8_t> out) {
+        embree->occluded_stream(r, out, coherent(r.data()));
+      },
+      args.batch);
   using ES = decltype(embree_side);
   if (have_embree()) {
     BenchRow row;
@@ -469,21 +489,16 @@ void run_accel_bench(const AccelBenchArgs& args) {
     row.bytes = st.bytes, row.nodes = st.nodes, row.depth = st.max_depth;
     row.refs_per_prim = double(st.prim_refs) / triangles;
     row.extra = st.extra;
-    const auto closest = [&](const std::vector<Ray>& r, size_t b, size_t e, std::vector<Hit>& out) {
-      if (args.batch)
-        accel->intersect_batch(std::span(r).subspan(b, e - b), std::span(out).subspan(b, e - b),
-                               order(r));
-      else
-        for (size_t i = b; i < e; ++i) accel->intersect(r[i], out[i]);
-    };
-    const auto any = [&](const std::vector<Ray>& r, size_t b, size_t e, std::vector<uint8_t>& out) {
-      if (args.batch)
-        accel->occluded_batch(std::span(r).subspan(b, e - b), std::span(out).subspan(b, e - b),
-                              order(r));
-      else
-        for (size_t i = b; i < e; ++i) out[i] = accel->occluded(r[i]);
-    };
-    const Queries<decltype(closest), decltype(any)> side{closest, any};
+    const auto side = queries(
+        [&](const Ray& r, Hit& h) { accel->intersect(r, h); },
+        [&](const Ray& r) { accel->occluded(r); },
+        [&](std::span<const Ray> r, std::span<Hit> h) {
+          accel->intersect_batch(r, h, order(r.data()));
+        },
+        [&](std::span<const Ray> r, std::span<uint8_t> out) {
+          accel->occluded_batch(r, out, order(r.data()));
+        },
+        args.batch);
     measure(row, rays, threads, args.repeat, side, embree ? &embree_side : nullptr, nullptr);
     // The structure's own counts over the incoherent rays (a separate, untimed pass).
     std::vector<TraversalCost> costs(rays.incoherent.size());

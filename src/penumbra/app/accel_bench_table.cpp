@@ -83,9 +83,9 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
       thread_label(build_threads), repeat);
   if (batch)
     fmt::print(
-        "(batch queries: intersect_batch and occluded_batch over each thread's share of a\n"
-        " chunk, against Embree's rtcIntersect1M and rtcOccluded1M: Embree's coherent mode for\n"
-        " the primary rays, our interleaving for the incoherent and occlusion rays)\n");
+        "(batch queries: intersect_batch and occluded_batch on 256 rays at a time, against\n"
+        " Embree's rtcIntersect1M and rtcOccluded1M: Embree's coherent mode for the primary\n"
+        " rays, our interleaving for the incoherent and occlusion rays)\n");
 }
 
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
