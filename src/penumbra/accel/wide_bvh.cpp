@@ -379,38 +379,28 @@ void WideBvh<W, Node>::make_blocks(std::span<WideNode<W>> nodes, const Primitive
       1024);
 }
 
-/// A ray's values for the box tests: origin, 1/d (scaled up for exit distances, Pharr et al.,
-/// "Physically Based Rendering", 3rd ed., section 3.9.2) and the near-plane rows chosen by the
-/// direction signs.
+/// A ray's values for the box tests of an interleaved traversal, made when it starts (those of
+/// traverse() are locals of its loop).
 template <int W>
 struct WideBoxRay {
   using F = FloatW<W>;
-  static constexpr float kFarScale = 1.0f + 2.0f * gamma(3);
   F ox, oy, oz, ix, iy, iz, fx, fy, fz, t0;
   int nx, ny, nz;
-  int oct;  ///< the ray's octant, bit a set where d[a] < 0 (order=octant)
 
-  [[gnu::always_inline]] explicit WideBoxRay(const PreparedRay& pr)
-      : ox(F::broadcast(pr.ray.o.x)),
-        oy(F::broadcast(pr.ray.o.y)),
-        oz(F::broadcast(pr.ray.o.z)),
-        ix(F::broadcast(pr.inv_dir.x)),
-        iy(F::broadcast(pr.inv_dir.y)),
-        iz(F::broadcast(pr.inv_dir.z)),
-        fx(F::broadcast(pr.inv_dir.x * kFarScale)),
-        fy(F::broadcast(pr.inv_dir.y * kFarScale)),
-        fz(F::broadcast(pr.inv_dir.z * kFarScale)),
-        t0(F::broadcast(pr.ray.tmin)),
-        nx(pr.neg[0]),
-        ny(2 + pr.neg[1]),
-        nz(4 + pr.neg[2]),
-        oct(pr.neg[0] | pr.neg[1] << 1 | pr.neg[2] << 2) {}
+  explicit WideBoxRay(const PreparedRay& pr) {
+    constexpr float kFarScale = 1.0f + 2.0f * gamma(3);
+    ox = F::broadcast(pr.ray.o.x), oy = F::broadcast(pr.ray.o.y), oz = F::broadcast(pr.ray.o.z);
+    ix = F::broadcast(pr.inv_dir.x), iy = F::broadcast(pr.inv_dir.y);
+    iz = F::broadcast(pr.inv_dir.z);
+    fx = F::broadcast(pr.inv_dir.x * kFarScale), fy = F::broadcast(pr.inv_dir.y * kFarScale);
+    fz = F::broadcast(pr.inv_dir.z * kFarScale);
+    t0 = F::broadcast(pr.ray.tmin);
+    nx = pr.neg[0], ny = 2 + pr.neg[1], nz = 4 + pr.neg[2];
+  }
 };
 
-/// One ray's traversal: where it is (the next node, count 0, or leaf) and what it deferred.
-/// One ray's traversal: where it is (the next node, count 0, or leaf), what it deferred, and
-/// whether it found a hit. Taken apart into scalars by step()'s callers, so that a single ray
-/// keeps them in registers.
+/// One ray's interleaved traversal: where it goes next (a node, count 0, or a leaf), what it
+/// deferred, and whether it found a hit.
 template <int W, class Node>
 struct WideBvh<W, Node>::Walk {
   uint32_t child = 0, count = 0;  // the root, an inner node
@@ -419,13 +409,118 @@ struct WideBvh<W, Node>::Walk {
   StackEntry stack[kStackSize];
 };
 
+// The step is traverse()'s loop body (distance order) with the ray's state in a Walk, and a
+// prefetch of wherever the ray goes next. traverse() keeps its own loop: written as this step
+// over locals, the single-ray traversal lost 4 % on incoherent rays of the million-triangle
+// meshes (spheres-1m 0.95 -> 0.91, terrain 0.98 -> 0.94 x Embree), with every branch the same.
 template <int W, class Node>
-template <bool kAnyHit, bool kTriangles, bool kOctant, bool kInterleaved, class Cost>
-[[gnu::always_inline]] inline bool WideBvh<W, Node>::step(const Node* nodes, const WideBoxRay<W>& b,
+template <bool kAnyHit, bool kTriangles>
+[[gnu::always_inline]] inline bool WideBvh<W, Node>::step(const Node* nodes,
+                                                         const WideBoxRay<W>& b,
                                                          const PreparedRay& pr, Hit& hit,
-                                                         WalkAt w, Cost cost) const {
+                                                         Walk& w) const {
   using F = FloatW<W>;
+  // Starts loading the first line of a node or leaf the ray will visit.
+  const auto prefetch = [&](uint32_t c, uint32_t count) {
+    if (kTriangles && count)
+      __builtin_prefetch(blocks_.block(c));
+    else if (count == 0)
+      __builtin_prefetch(&nodes[c]);
+  };
+  // Where the ray goes next, loading it (a node's first box line and its children's line) while
+  // the other rays take their steps.
+  const auto go = [&](uint32_t c, uint32_t count) {
+    w.child = c, w.count = count;
+    prefetch(c, count);
+    if (count == 0) __builtin_prefetch(nodes[c].child);
+    return false;
+  };
+  if (w.count == 0) {
+    const Node& n = nodes[w.child];
+    const F t1 = F::broadcast(hit.t);
+    const F near = max((plane(n, b.nx) - b.ox) * b.ix,
+                       max((plane(n, b.ny) - b.oy) * b.iy, max((plane(n, b.nz) - b.oz) * b.iz, b.t0)));
+    const F far = min((plane(n, b.nx ^ 1) - b.ox) * b.fx,
+                      min((plane(n, b.ny ^ 1) - b.oy) * b.fy, min((plane(n, b.nz ^ 1) - b.oz) * b.fz, t1)));
+    unsigned mask = mask_le(near, far) & slots(n);
+    if (mask != 0) {
+      const auto defer = [&](int i, float t) {
+        w.stack[w.sp++] = {n.child[i], n.count[i], t};
+        prefetch(n.child[i], n.count[i]);
+      };
+      if constexpr (kAnyHit) {
+        // As traverse(): the first leaf child now, the other leaves before the inner children.
+        const unsigned leaves = mask & leaf_lanes(n);
+        const int i0 = std::countr_zero(leaves ? leaves : mask);
+        mask &= ~(1u << i0);
+        for (unsigned m = mask & ~leaves; m; m &= m - 1) defer(std::countr_zero(m), 0.0f);
+        for (unsigned m = mask & leaves; m; m &= m - 1) defer(std::countr_zero(m), 0.0f);
+        return go(n.child[i0], n.count[i0]);
+      }
+      alignas(32) float dist[W];
+      near.store(dist);
+      const int i0 = std::countr_zero(mask);
+      mask &= mask - 1;
+      if (mask == 0) return go(n.child[i0], n.count[i0]);
+      const int i1 = std::countr_zero(mask);
+      mask &= mask - 1;
+      if (mask == 0) {  // the order of traverse(), which a key sort differs from at -0 and +0
+        const int a = dist[i1] < dist[i0] ? i1 : i0, c = i0 ^ i1 ^ a;
+        defer(c, dist[c]);
+        return go(n.child[a], n.count[a]);
+      }
+      // The nearest next, the others pushed farthest first.
+      uint64_t key[W];
+      int k = 0;
+      for (unsigned m = mask | 1u << i0 | 1u << i1; m; m &= m - 1) {
+        const int i = std::countr_zero(m);
+        key[k++] = distance_key(dist[i], i);
+      }
+      sort_small(key, k);
+      for (int j = k - 1; j > 0; --j) defer(key_lane(key[j]), dist[key_lane(key[j])]);
+      const int first = key_lane(key[0]);
+      return go(n.child[first], n.count[first]);
+    }
+  } else {
+    const bool leaf_hit =
+        kTriangles ? blocks_.intersect<kAnyHit>(BlockRay(pr), w.child, w.count, hit)
+                   : leaf_.intersect<kAnyHit, false>(*prims_, pr, w.child, w.count, hit, NoCost{});
+    if (leaf_hit) {
+      w.found = true;
+      if constexpr (kAnyHit) return true;
+    }
+  }
+  // The next deferred child that may still hold a closer hit.
+  do {
+    if (w.sp == 0) return true;
+    --w.sp;
+  } while (w.stack[w.sp].t > hit.t);
+  w.child = w.stack[w.sp].child, w.count = w.stack[w.sp].count;
+  if (w.count == 0) __builtin_prefetch(nodes[w.child].child);
+  return false;
+}
+
+template <int W, class Node>
+template <bool kAnyHit, bool kTriangles, bool kOctant, class Cost>
+bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
+  using F = FloatW<W>;
+  // Per-ray values: origin, 1/d (scaled up for exit distances, Pharr et al., "Physically Based
+  // Rendering", 3rd ed., section 3.9.2) and the near-plane rows chosen by the direction signs.
+  constexpr float kFarScale = 1.0f + 2.0f * gamma(3);
+  const F ox = F::broadcast(pr.ray.o.x), oy = F::broadcast(pr.ray.o.y),
+          oz = F::broadcast(pr.ray.o.z);
+  const F ix = F::broadcast(pr.inv_dir.x), iy = F::broadcast(pr.inv_dir.y),
+          iz = F::broadcast(pr.inv_dir.z);
+  const F fx = F::broadcast(pr.inv_dir.x * kFarScale), fy = F::broadcast(pr.inv_dir.y * kFarScale),
+          fz = F::broadcast(pr.inv_dir.z * kFarScale);
+  const int nx = pr.neg[0], ny = 2 + pr.neg[1], nz = 4 + pr.neg[2];
+  const F t0 = F::broadcast(pr.ray.tmin);
+  // Octant order (order=octant, 8 lanes): the ray's octant, bit a set where d[a] < 0.
   constexpr bool octant = W == 8 && kOctant;
+  const int oct = pr.neg[0] | pr.neg[1] << 1 | pr.neg[2] << 2;
+  // The node array in a local: through `this`, register pressure made GCC reload the object
+  // pointer and then the array's at every node (any-hit rays +0.01-0.03 x Embree without).
+  const Node* const nodes = nodes_.data();
   // A deferred child will often be visited: start loading its first line (a node's boxes, or a
   // leaf's first block) while the nearer ones are traversed.
   const auto prefetch_child = [&](uint32_t c, uint32_t count) {
@@ -437,35 +532,30 @@ template <bool kAnyHit, bool kTriangles, bool kOctant, bool kInterleaved, class 
     }
     if (count == 0) __builtin_prefetch(&nodes[c]);
   };
-  // The node or leaf a ray goes to next. Interleaved with other rays, it starts loading what it
-  // will read there (a node's first box line and its children's line, or a leaf's first block):
-  // the other rays' steps run while those lines arrive.
-  const auto go = [&](uint32_t c, uint32_t count) {
-    w.child = c, w.count = count;
-    if constexpr (kInterleaved) {
-      prefetch_child(c, count);
-      if (count == 0) __builtin_prefetch(nodes[c].child);
-    }
-    return false;
-  };
-  if (w.count == 0) {
-    // Slab test of all W children at once. max(x, acc) and min(x, acc) keep acc where x is
-    // NaN (0 * inf: the origin on a plane of a zero direction component), so such a term
-    // never rejects a box; the running bounds start from the ray interval and each plane's
-    // distance enters as the first operand.
-    const Node& n = nodes[w.child];
-    cost.node();
-    // The children's indices lie on another cache line than the boxes; which one is needed
-    // depends on the box test, so fetch the line now rather than after it (two misses in
-    // parallel instead of one after the other).
-    if constexpr (!kInterleaved) __builtin_prefetch(n.child);
-    const F t1 = F::broadcast(hit.t);
-    const F near = max((plane(n, b.nx) - b.ox) * b.ix,
-                       max((plane(n, b.ny) - b.oy) * b.iy, max((plane(n, b.nz) - b.oz) * b.iz, b.t0)));
-    const F far = min((plane(n, b.nx ^ 1) - b.ox) * b.fx,
-                      min((plane(n, b.ny ^ 1) - b.oy) * b.fy, min((plane(n, b.nz ^ 1) - b.oz) * b.fz, t1)));
-    unsigned mask = mask_le(near, far) & slots(n);
-    if (mask != 0) {
+
+  StackEntry stack[kStackSize];
+  int sp = 0;
+  uint32_t child = 0, count = 0;  // the root, an inner node
+  bool found = false;
+  while (true) {
+    if (count == 0) {
+      // Slab test of all W children at once. max(x, acc) and min(x, acc) keep acc where x is
+      // NaN (0 * inf: the origin on a plane of a zero direction component), so such a term
+      // never rejects a box; the running bounds start from the ray interval and each plane's
+      // distance enters as the first operand.
+      const Node& n = nodes[child];
+      cost.node();
+      // The children's indices lie on another cache line than the boxes; which one is needed
+      // depends on the box test, so fetch the line now rather than after it (two misses in
+      // parallel instead of one after the other).
+      __builtin_prefetch(n.child);
+      const F t1 = F::broadcast(hit.t);
+      const F near = max((plane(n, nx) - ox) * ix,
+                         max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
+      const F far = min((plane(n, nx ^ 1) - ox) * fx,
+                        min((plane(n, ny ^ 1) - oy) * fy, min((plane(n, nz ^ 1) - oz) * fz, t1)));
+      unsigned mask = mask_le(near, far) & slots(n);
+      if (mask == 0) goto pop;
       if constexpr (kAnyHit) {
         // Any hit ends the query, so distances do not matter (hit.t never shrinks before the
         // end). Leaves first: a leaf hit ends the query with no further node fetched, so the
@@ -477,37 +567,42 @@ template <bool kAnyHit, bool kTriangles, bool kOctant, bool kInterleaved, class 
         const auto defer = [&](unsigned lanes) {
           for (; lanes; lanes &= lanes - 1) {
             const int i = std::countr_zero(lanes);
-            w.stack[w.sp++] = {n.child[i], n.count[i], 0.0f};
+            stack[sp++] = {n.child[i], n.count[i], 0.0f};
             prefetch_child(n.child[i], n.count[i]);
           }
         };
         defer(mask & ~leaves);
         defer(mask & leaves);
-        return go(n.child[i0], n.count[i0]);
+        child = n.child[i0], count = n.count[i0];
+        continue;
       }
       alignas(32) float dist[W];
       near.store(dist);
       const int i0 = std::countr_zero(mask);
       mask &= mask - 1;
-      if (mask == 0) return go(n.child[i0], n.count[i0]);  // one child: go there
+      if (mask == 0) {  // one child: go there
+        child = n.child[i0], count = n.count[i0];
+        continue;
+      }
       if constexpr (octant) {
         // The ray's octant order (slots laid out by the collapse): the first lane hit in that
         // order next, the others pushed last-first. The next node does not wait on the
         // distances, which only go with the deferred lanes for culling at the pop.
         mask |= 1u << i0;
         unsigned order = mask;
-        if (b.oct & 1) order = ((order & 0x55u) << 1) | ((order >> 1) & 0x55u);
-        if (b.oct & 2) order = ((order & 0x33u) << 2) | ((order >> 2) & 0x33u);
-        if (b.oct & 4) order = ((order & 0x0fu) << 4) | ((order >> 4) & 0x0fu);
-        const int first = std::countr_zero(order) ^ b.oct;
+        if (oct & 1) order = ((order & 0x55u) << 1) | ((order >> 1) & 0x55u);
+        if (oct & 2) order = ((order & 0x33u) << 2) | ((order >> 2) & 0x33u);
+        if (oct & 4) order = ((order & 0x0fu) << 4) | ((order >> 4) & 0x0fu);
+        const int first = std::countr_zero(order) ^ oct;
         for (unsigned rest = order & (order - 1); rest;) {
           const int j = 31 - std::countl_zero(rest);
           rest &= ~(1u << j);
-          const int i = j ^ b.oct;
-          w.stack[w.sp++] = {n.child[i], n.count[i], dist[i]};
+          const int i = j ^ oct;
+          stack[sp++] = {n.child[i], n.count[i], dist[i]};
           prefetch_child(n.child[i], n.count[i]);
         }
-        return go(n.child[first], n.count[first]);
+        child = n.child[first], count = n.count[first];
+        continue;
       }
       const int i1 = std::countr_zero(mask);
       mask &= mask - 1;
@@ -516,10 +611,11 @@ template <bool kAnyHit, bool kTriangles, bool kOctant, bool kInterleaved, class 
         // beats a select (forced by integer masks: primary rays -10 %, bounce -4 %): the
         // predicted branch lets the next node's load start before the distances are compared.
         const bool swap = __builtin_expect_with_probability(dist[i1] < dist[i0], 1, 0.5);
-        const int a = swap ? i1 : i0, c = i0 ^ i1 ^ a;
-        w.stack[w.sp++] = {n.child[c], n.count[c], dist[c]};
-        prefetch_child(n.child[c], n.count[c]);
-        return go(n.child[a], n.count[a]);
+        const int a = swap ? i1 : i0, b = i0 ^ i1 ^ a;
+        stack[sp++] = {n.child[b], n.count[b], dist[b]};
+        prefetch_child(n.child[b], n.count[b]);
+        child = n.child[a], count = n.count[a];
+        continue;
       }
       // Three or more: sort (distance, lane) keys (three or four by networks of selects, not
       // branches: small_sort.h), push all but the nearest farthest first, take the nearest.
@@ -532,60 +628,41 @@ template <bool kAnyHit, bool kTriangles, bool kOctant, bool kInterleaved, class 
       sort_small(key, k);
       for (int j = k - 1; j > 0; --j) {
         const int i = key_lane(key[j]);
-        w.stack[w.sp++] = {n.child[i], n.count[i], dist[i]};
+        stack[sp++] = {n.child[i], n.count[i], dist[i]};
         prefetch_child(n.child[i], n.count[i]);
       }
       const int first = key_lane(key[0]);
-      return go(n.child[first], n.count[first]);
+      child = n.child[first], count = n.count[first];
+      continue;
     }
-  } else {
     // Leaf: test its primitives; each hit shrinks hit.t.
     bool leaf_hit;
     cost.node();
     if constexpr (kTriangles) {
-      cost.prims(w.count);
+      cost.prims(count);
       // The leaf test's per-ray vectors made here, not once before the loop: held across it,
       // they were 7 more than AVX2's 16 registers could keep with the box test's 10, and were
       // spilled at every ray's start (primary rays +4-14 % x Embree, shadow rays -3 to +1 %).
-      leaf_hit = blocks_.intersect<kAnyHit>(BlockRay(pr), w.child, w.count, hit);
+      leaf_hit = blocks_.intersect<kAnyHit>(BlockRay(pr), child, count, hit);
     } else {
-      leaf_hit = leaf_.intersect<kAnyHit, false>(*prims_, pr, w.child, w.count, hit, cost);
+      leaf_hit = leaf_.intersect<kAnyHit, false>(*prims_, pr, child, count, hit, cost);
     }
     if (leaf_hit) {
-      w.found = true;
       if constexpr (kAnyHit) return true;
+      found = true;
     }
+  pop:
+    // The next deferred child that may still hold a closer hit.
+    do {
+      if (sp == 0) return found;
+      --sp;
+    } while (stack[sp].t > hit.t);
+    child = stack[sp].child, count = stack[sp].count;
   }
-  // The next deferred child that may still hold a closer hit.
-  do {
-    if (w.sp == 0) return true;
-    --w.sp;
-  } while (w.stack[w.sp].t > hit.t);
-  w.child = w.stack[w.sp].child, w.count = w.stack[w.sp].count;
-  if constexpr (kInterleaved)
-    if (w.count == 0) __builtin_prefetch(nodes[w.child].child);
-  return false;
 }
 
 template <int W, class Node>
-template <bool kAnyHit, bool kTriangles, bool kOctant, class Cost>
-bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
-  // The node array in a local: through `this`, register pressure made GCC reload the object
-  // pointer and then the array's at every node (any-hit rays +0.01-0.03 x Embree without).
-  const Node* const nodes = nodes_.data();
-  const WideBoxRay<W> b(pr);
-  uint32_t child = 0, count = 0;
-  int sp = 0;
-  bool found = false;
-  StackEntry stack[kStackSize];
-  const WalkAt w{child, count, sp, found, stack};
-  while (!step<kAnyHit, kTriangles, kOctant, false>(nodes, b, pr, hit, w, cost)) {
-  }
-  return found;
-}
-
-template <int W, class Node>
-template <bool kAnyHit, bool kTriangles, bool kOctant>
+template <bool kAnyHit, bool kTriangles>
 void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits,
                                   std::span<uint8_t> blocked) const {
   // Up to kInterleave rays in flight, each a node or leaf per turn, round robin; a finished
@@ -623,11 +700,8 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
   while (live > 0) {
     for (int k = 0; k < live;) {
       Walk& w = walks[k];
-      const WalkAt at{w.child, w.count, w.sp, w.found, w.stack};
-      const PreparedRay& pr = slot[k].pr;
       const size_t i = slot[k].index;
-      if (!step<kAnyHit, kTriangles, kOctant, true>(nodes, slot[k].box, pr, hits[i], at,
-                                                    NoCost{})) {
+      if (!step<kAnyHit, kTriangles>(nodes, slot[k].box, slot[k].pr, hits[i], w)) {
         ++k;
         continue;
       }
@@ -652,13 +726,12 @@ void WideBvh<W, Node>::batch(std::span<const Ray> rays, std::span<Hit> hits,
   // Coherent rays go one at a time: interleaved, neighbours that would find the same nodes in
   // the caches and the same branches predicted scramble both (terrain, primary rays 1.04 ->
   // 0.80 x Embree).
-  const bool interleaved = interleave_ && order == BatchOrder::kIncoherent && !nodes_.empty();
-  if (interleaved && blocks_.size())
-    return octant_order_ && !kAnyHit ? interleave<kAnyHit, true, true>(rays, hits, blocked)
-                                     : interleave<kAnyHit, true, false>(rays, hits, blocked);
+  // The octant order (order=octant) is not interleaved: its closest-hit rays go one at a time.
+  const bool interleaved = interleave_ && order == BatchOrder::kIncoherent && !nodes_.empty() &&
+                           (kAnyHit || !octant_order_);
   if (interleaved)
-    return octant_order_ && !kAnyHit ? interleave<kAnyHit, false, true>(rays, hits, blocked)
-                                     : interleave<kAnyHit, false, false>(rays, hits, blocked);
+    return blocks_.size() ? interleave<kAnyHit, true>(rays, hits, blocked)
+                          : interleave<kAnyHit, false>(rays, hits, blocked);
   for (size_t i = 0; i < rays.size(); ++i) {
     if constexpr (kAnyHit)
       blocked[i] = occluded(rays[i]);
