@@ -168,10 +168,14 @@ BenchRates run_once(const RaySets& rays, int threads, const S& side, std::vector
   // loop the benchmark always had), or batches of kBenchBatch rays.
   const auto closest = [](const auto* q, Hit* keep) {
     return [q, keep](const std::vector<Ray>& r, size_t b, size_t e) {
+      if (!q->batch && keep) {
+        for (size_t i = b; i < e; ++i) q->closest(r[i], keep[i]);
+        return;
+      }
       if (!q->batch) {
         for (size_t i = b; i < e; ++i) {
           Hit h;
-          q->closest(r[i], keep ? keep[i] : h);
+          q->closest(r[i], h);
         }
         return;
       }
