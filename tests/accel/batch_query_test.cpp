@@ -23,7 +23,8 @@ std::vector<Ray> batch_rays(const PrimitiveSet& prims, size_t n, uint64_t seed) 
   std::vector<Ray> rays = mixed_rays(prims, n, seed);
   for (size_t i = 0; i < rays.size(); i += 7) rays[i].tmax = 0.3f + float(i % 5);
   for (size_t i = 3; i < rays.size(); i += 101) rays[i].d = Vec3(0.0f);
-  for (size_t i = 5; i < rays.size(); i += 211) rays[i].o.x = std::numeric_limits<float>::quiet_NaN();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  for (size_t i = 5; i < rays.size(); i += 211) rays[i].o.x = nan;
   return rays;
 }
 

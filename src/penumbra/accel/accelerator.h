@@ -1,8 +1,8 @@
 #pragma once
 /// The interface every spatial data structure for ray shooting implements.
 #include <cstddef>
-#include <memory>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <utility>

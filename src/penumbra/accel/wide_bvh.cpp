@@ -220,7 +220,6 @@ unsigned leaf_lanes(const Node& n) {
   return m;
 }
 
-
 }  // namespace
 
 template <int W, class Node>
@@ -439,9 +438,11 @@ template <bool kAnyHit, bool kTriangles>
     const Node& n = nodes[w.child];
     const F t1 = F::broadcast(hit.t);
     const F near = max((plane(n, b.nx) - b.ox) * b.ix,
-                       max((plane(n, b.ny) - b.oy) * b.iy, max((plane(n, b.nz) - b.oz) * b.iz, b.t0)));
+                       max((plane(n, b.ny) - b.oy) * b.iy,
+                           max((plane(n, b.nz) - b.oz) * b.iz, b.t0)));
     const F far = min((plane(n, b.nx ^ 1) - b.ox) * b.fx,
-                      min((plane(n, b.ny ^ 1) - b.oy) * b.fy, min((plane(n, b.nz ^ 1) - b.oz) * b.fz, t1)));
+                      min((plane(n, b.ny ^ 1) - b.oy) * b.fy,
+                          min((plane(n, b.nz ^ 1) - b.oz) * b.fz, t1)));
     unsigned mask = mask_le(near, far) & slots(n);
     if (mask != 0) {
       const auto defer = [&](int i, float t) {

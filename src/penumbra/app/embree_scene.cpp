@@ -109,15 +109,22 @@ namespace {
 /// Rays per call of Embree's stream API.
 constexpr size_t kStreamChunk = 256;
 RTCRay to_embree(const Ray& ray) {
-  return {ray.o.x, ray.o.y, ray.o.z, ray.tmin, ray.d.x, ray.d.y, ray.d.z, 0.0f, ray.tmax, ~0u, 0, 0};
+  return {ray.o.x, ray.o.y, ray.o.z,  ray.tmin, ray.d.x, ray.d.y,
+          ray.d.z, 0.0f,    ray.tmax, ~0u,      0,       0};
+}
+/// A stream query's context, coherent or not.
+RTCIntersectContext stream_context(bool coherent) {
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  ctx.flags =
+      coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  return ctx;
 }
 }  // namespace
 
 void EmbreeScene::intersect_stream(std::span<const Ray> rays, std::span<Hit> hits,
                                    bool coherent) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  RTCIntersectContext ctx = stream_context(coherent);
   alignas(64) RTCRayHit rh[kStreamChunk];
   for (size_t begin = 0; begin < rays.size(); begin += kStreamChunk) {
     const size_t n = std::min(kStreamChunk, rays.size() - begin);
@@ -138,9 +145,7 @@ void EmbreeScene::intersect_stream(std::span<const Ray> rays, std::span<Hit> hit
 
 void EmbreeScene::occluded_stream(std::span<const Ray> rays, std::span<uint8_t> out,
                                   bool coherent) const {
-  RTCIntersectContext ctx;
-  rtcInitIntersectContext(&ctx);
-  ctx.flags = coherent ? RTC_INTERSECT_CONTEXT_FLAG_COHERENT : RTC_INTERSECT_CONTEXT_FLAG_INCOHERENT;
+  RTCIntersectContext ctx = stream_context(coherent);
   alignas(64) RTCRay r[kStreamChunk];
   for (size_t begin = 0; begin < rays.size(); begin += kStreamChunk) {
     const size_t n = std::min(kStreamChunk, rays.size() - begin);
