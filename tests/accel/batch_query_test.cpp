@@ -105,9 +105,7 @@ TEST(BatchQueries, InterleavingIsOnByParameterOrForStructuresBeyondTheCaches) {
   const auto interleaved = [&](const std::string& spec) {
     auto accel = make_accelerator(spec);
     accel->build(soup.prims);
-    for (const auto& [key, value] : accel->stats().extra)
-      if (key == "interleaved batches") return value;
-    return -1.0;
+    return extra_stat(*accel, "interleaved batches");
   };
   EXPECT_EQ(interleaved("bvh"), 0.0);  // auto: 500 triangles stay in the caches
   EXPECT_EQ(interleaved("bvh:interleave=on"), 1.0);

@@ -61,13 +61,6 @@ std::vector<Visit> walk(const KdTree& kd) {
   return out;
 }
 
-/// The statistic `key` of `st.extra` (NaN when missing).
-double extra(const AccelStats& st, const std::string& key) {
-  for (const auto& [k, value] : st.extra)
-    if (k == key) return value;
-  return std::nan("");
-}
-
 /// Closest hits, and occlusion with infinite and finite tmax, against brute force; returns the
 /// number of rays that differ.
 size_t differences(const Accelerator& accel, const PrimitiveSet& prims,
@@ -408,8 +401,8 @@ TEST(KdTree, TreeInvariantsHold) {
       for (uint32_t id = 0; id < s.prims.size(); ++id)
         EXPECT_EQ(referenced[id] > 0, !s.prims.prim_bounds(id).empty()) << id;
       EXPECT_EQ(st.nodes, 2 * leaves - 1);
-      EXPECT_EQ(extra(st, "stored nodes"), double(kd.nodes().size()));
-      EXPECT_EQ(extra(st, "empty leaves"), double(empty_leaves));
+      EXPECT_EQ(extra_stat(kd, "stored nodes"), double(kd.nodes().size()));
+      EXPECT_EQ(extra_stat(kd, "empty leaves"), double(empty_leaves));
       // Every stored node is reached, but the below one of two empty children, kept so that
       // each inner node has a next node.
       EXPECT_LE(stored, kd.nodes().size());
