@@ -55,8 +55,9 @@ double best_cost(const BvhNodeArray& bin, uint32_t b, int slots, int width, floa
 TEST(SahCollapse, PlannedCostIsTheBuiltTreesAndAtMostTheGreedyOne) {
   for (const auto& scene : {random_soup(3000, 3), torus(40, 30), room_with_boxes(30, 4)}) {
     for (const char* width : {"8", "4"}) {
-      // Object splits only: the binary tree below is the one these structures collapse.
-      const std::string base = std::string("bvh:spatial=0,width=") + width;
+      // Object splits only and no treelet restructuring: the binary tree below is the one
+      // these structures collapse.
+      const std::string base = std::string("bvh:spatial=0,optimize=0,width=") + width;
       auto greedy = make_accelerator(base + ",collapse=greedy");
       auto sah = make_accelerator(base + ",collapse=sah");
       greedy->build(scene.prims);

@@ -59,8 +59,10 @@ const Registry<Factory>& registry() {
        "as extra references for large triangles, F in [0, 4]), spatial=1 (SBVH spatial splits: "
        "up to F x the triangles as extra references, F in [0, 4], binned builds of static "
        "triangles; 0 turns them off), alpha=0.001 (tried where the object split's children "
-       "overlap by more than this share of the root's area), order=distance|octant (8-wide: "
-       "closest-hit rays visit children nearest first, or in their octant's order)",
+       "overlap by more than this share of the root's area), optimize=auto (treelet "
+       "restructuring passes of the binary tree, 0-16; auto: one for sets of up to 2^18 "
+       "primitives, none above), order=distance|octant (8-wide: closest-hit rays visit "
+       "children nearest first, or in their octant's order)",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
       {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},
@@ -76,6 +78,9 @@ const Registry<Factory>& registry() {
        create_bvh},
       {"bvh:spatial=0", "bvh without spatial splits (object splits only, one reference per "
        "triangle)", create_bvh},
+      {"bvh:optimize=0",
+       "bvh without treelet restructuring (the binary tree as the binned SAH built it)",
+       create_bvh},
       {"bvh:presplit=0.5",
        "bvh over pre-split large triangles: up to 50 % more references, split at grid planes",
        create_bvh},

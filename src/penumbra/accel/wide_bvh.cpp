@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "penumbra/accel/build/presplit.h"
+#include "penumbra/accel/build/treelet_opt.h"
 #include "penumbra/accel/build/wide_collapse.h"
 #include "penumbra/accel/simd.h"
 #include "penumbra/accel/small_sort.h"
@@ -187,6 +188,9 @@ double wide_sah_cost(const WideNodeArray<W>& nodes, float node_cost, int block_s
   return root_area > 0 ? total / root_area + node_cost : 0.0;
 }
 
+/// optimize=auto restructures the treelets of sets of at most this many primitives (one pass).
+constexpr size_t kOptimizeBelow = size_t(1) << 18;
+
 /// Sets of at most this many primitives are built with and without spatial splits, and the tree
 /// of lower wide SAH cost kept (a build of 4,096 triangles takes about a millisecond).
 constexpr size_t kCompareBelow = 4096;
@@ -231,6 +235,11 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
                             params.name(), collapse));
   sah_collapse_ = collapse == "sah";
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
+  // optimize=auto: one pass of treelet restructuring for sets of up to kOptimizeBelow
+  // primitives, none above (where it was measured to gain nothing; docs/accel.md).
+  optimize_ = params.get_string("optimize", "auto") == "auto"
+                  ? -1
+                  : int(params.get_int("optimize", 0, 0, 16));
   const std::string order = params.get_string("order", "distance");
   if (order != "distance" && order != "octant")
     throw Error(fmt::format("{}: parameter 'order' must be distance or octant, got '{}'",
@@ -274,13 +283,30 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
     WideNodeArray<W> full;
     size_t leaves = 0, max_depth = 0;
     double sah_cost = 0;
+    size_t treelets = 0;  // optimize=N: treelets rewritten, and the inner area before and after
+    double area_before = 0, area_after = 0;
   };
   const auto build_wide = [&](const BvhBuildParams& bp) {
     Built b;
-    PrimRefs refs =
-        make_prim_refs(prims, size_t(double(bp.spatial_budget) * double(prims.size())) + 1);
-    if (presplit) presplit_refs(prims, refs, presplit_);
-    b.tree = build_binary_bvh(std::move(refs), bp, false, &prims);
+    const auto make_refs = [&] {
+      PrimRefs refs =
+          make_prim_refs(prims, size_t(double(bp.spatial_budget) * double(prims.size())) + 1);
+      if (presplit) presplit_refs(prims, refs, presplit_);
+      return refs;
+    };
+    b.tree = build_binary_bvh(make_refs(), bp, false, &prims);
+    const int passes = optimize_ >= 0 ? optimize_ : prims.size() <= kOptimizeBelow ? 1 : 0;
+    if (passes > 0) {
+      const TreeletStats st = optimize_treelets(b.tree.nodes, passes);
+      b.treelets = st.treelets, b.area_before = st.area_before, b.area_after = st.area_after;
+      b.tree.max_depth = st.max_depth;
+      // Restructuring may deepen the tree; past what the traversal stack covers (never seen),
+      // the tree is built again and left as built.
+      if (st.max_depth >= size_t(kBvhStackSize)) {
+        b = Built{};
+        b.tree = build_binary_bvh(make_refs(), bp, false, &prims);
+      }
+    }
     const BinaryBvh& tree = b.tree;
     std::optional<SahCollapse> plan;
     if (sah_collapse_ && !tree.nodes.empty() && !tree.nodes[0].is_leaf())
@@ -347,6 +373,11 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   stats_.extra = {{"sah_cost", sah_cost}};
   interleave_ = interleave_mode_ < 0 ? stats_.bytes > kInterleaveBytes : interleave_mode_ == 1;
   stats_.extra.emplace_back("interleaved batches", double(interleave_));
+  if (best.treelets > 0 || best.area_before > 0) {
+    stats_.extra.emplace_back("treelets rewritten", double(best.treelets));
+    stats_.extra.emplace_back("inner area before", best.area_before);
+    stats_.extra.emplace_back("inner area after", best.area_after);
+  }
   stats_.build_ms = timer.elapsed_ms();
 }
 

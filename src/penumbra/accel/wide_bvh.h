@@ -8,7 +8,9 @@
 ///
 /// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
 /// collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h, the default, or
-/// largest-area opening); interleave=auto|on|off (whether batch queries, intersect_batch and
+/// largest-area opening); optimize=N|auto (passes of treelet restructuring over the binary
+/// tree before the collapse, build/treelet_opt.h; auto, the default: one for sets of up to
+/// 2^18 primitives, none above); interleave=auto|on|off (whether batch queries, intersect_batch and
 /// occluded_batch, alternate between 8 rays' traversals a node at a time, so that each ray's
 /// next node loads while the others work; auto: when the structure exceeds 16 MiB, where the
 /// loads miss the caches); the 8-wide one also nodes=full|compressed (the node layout) and
@@ -89,6 +91,7 @@ class WideBvh final : public Accelerator {
   BvhBuildParams params_;
   bool sah_collapse_ = true;  ///< collapse=sah (default): the SAH-optimal collapse, else greedy
   double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
+  int optimize_ = -1;  ///< optimize=N: treelet restructuring passes (treelet_opt.h); -1: auto
   /// order=octant: closest-hit rays visit the children a node's test keeps in the order of the
   /// ray's octant (slots laid out for it by the collapse) instead of by entry distance.
   bool octant_order_ = false;
