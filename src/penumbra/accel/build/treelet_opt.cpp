@@ -96,13 +96,16 @@ class TreeletOptimizer {
         cost_[s] = 0.0;
         continue;
       }
-      // Each partition once: the part holding the lowest subtree on the left.
+      // Each partition once: the lowest subtree on the left with any proper subset of the
+      // others, largest first.
       double best = std::numeric_limits<double>::infinity();
       uint32_t best_part = 0;
-      for (uint32_t p = (s - 1) & s; p; p = (p - 1) & s) {
-        if (!(p & low)) continue;
+      const uint32_t rest = s ^ low;
+      for (uint32_t q = (rest - 1) & rest;; q = (q - 1) & rest) {
+        const uint32_t p = low | q;
         const double c = cost_[p] + cost_[s ^ p];
         if (c < best) best = c, best_part = p;
+        if (q == 0) break;
       }
       cost_[s] = area_[s] + best;
       split_[s] = best_part;
