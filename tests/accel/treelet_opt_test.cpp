@@ -153,8 +153,8 @@ TEST(TreeletOpt, KeepsEveryLeafAndNeverAddsArea) {
       p.block_shift = 2;
       p.spatial_budget = spatial;
       BinaryBvh tree =
-          build_binary_bvh(make_prim_refs(scene.prims, size_t(spatial * scene.prims.size()) + 1),
-                           p, true, &scene.prims);
+          build_binary_bvh(make_prim_refs(scene.prims, size_t(spatial * scene.prims.size()) + 1), p,
+                           true, &scene.prims);
       const Walk before = walk(tree.nodes);
       const TreeletStats st = optimize_treelets(tree.nodes, 3);
       const Walk after = walk(tree.nodes);
@@ -195,7 +195,8 @@ TEST(TreeletOpt, SameTreeForEveryThreadCount) {
 }
 
 TEST(TreeletOpt, ParameterIsCheckedAndAutoOptimisesSmallSets) {
-  for (const char* ok : {"bvh:optimize=0", "bvh:optimize=3", "bvh:optimize=auto", "bvh4:optimize=1"})
+  for (const char* ok :
+       {"bvh:optimize=0", "bvh:optimize=3", "bvh:optimize=auto", "bvh4:optimize=1"})
     EXPECT_NO_THROW(make_accelerator(ok)) << ok;
   for (const char* bad : {"bvh:optimize=-1", "bvh:optimize=17", "bvh:optimize=yes"})
     EXPECT_THROW(make_accelerator(bad), Error) << bad;

@@ -236,7 +236,8 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
   sah_collapse_ = collapse == "sah";
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
   // optimize=auto: one pass of treelet restructuring for sets of up to kOptimizeBelow
-  // primitives, none above (where it was measured to gain nothing; docs/accel.md).
+  // primitives, none above (where a pass gained 0-2 % for a third more build time, past
+  // Embree's on spheres-1m at one thread; docs/accel.md).
   optimize_ = params.get_string("optimize", "auto") == "auto"
                   ? -1
                   : int(params.get_int("optimize", 0, 0, 16));
@@ -283,7 +284,8 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
     WideNodeArray<W> full;
     size_t leaves = 0, max_depth = 0;
     double sah_cost = 0;
-    size_t treelets = 0;  // optimize=N: treelets rewritten, and the inner area before and after
+    bool optimized = false;  // treelet restructuring ran: treelets rewritten, inner areas
+    size_t treelets = 0;
     double area_before = 0, area_after = 0;
   };
   const auto build_wide = [&](const BvhBuildParams& bp) {
@@ -298,7 +300,8 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
     const int passes = optimize_ >= 0 ? optimize_ : prims.size() <= kOptimizeBelow ? 1 : 0;
     if (passes > 0) {
       const TreeletStats st = optimize_treelets(b.tree.nodes, passes);
-      b.treelets = st.treelets, b.area_before = st.area_before, b.area_after = st.area_after;
+      b.optimized = true, b.treelets = st.treelets;
+      b.area_before = st.area_before, b.area_after = st.area_after;
       b.tree.max_depth = st.max_depth;
       // Restructuring may deepen the tree; past what the traversal stack covers (never seen),
       // the tree is built again and left as built.
@@ -373,7 +376,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   stats_.extra = {{"sah_cost", sah_cost}};
   interleave_ = interleave_mode_ < 0 ? stats_.bytes > kInterleaveBytes : interleave_mode_ == 1;
   stats_.extra.emplace_back("interleaved batches", double(interleave_));
-  if (best.treelets > 0 || best.area_before > 0) {
+  if (best.optimized) {
     stats_.extra.emplace_back("treelets rewritten", double(best.treelets));
     stats_.extra.emplace_back("inner area before", best.area_before);
     stats_.extra.emplace_back("inner area after", best.area_after);

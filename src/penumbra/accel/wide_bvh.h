@@ -10,11 +10,12 @@
 /// collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h, the default, or
 /// largest-area opening); optimize=N|auto (passes of treelet restructuring over the binary
 /// tree before the collapse, build/treelet_opt.h; auto, the default: one for sets of up to
-/// 2^18 primitives, none above); interleave=auto|on|off (whether batch queries, intersect_batch and
-/// occluded_batch, alternate between 8 rays' traversals a node at a time, so that each ray's
-/// next node loads while the others work; auto: when the structure exceeds 16 MiB, where the
-/// loads miss the caches); the 8-wide one also nodes=full|compressed (the node layout) and
-/// order=distance|octant (how closest-hit rays order the children they visit).
+/// 2^18 primitives, none above); interleave=auto|on|off (whether batch queries,
+/// intersect_batch and occluded_batch, alternate between 8 rays' traversals a node at a time,
+/// so that each ray's next node loads while the others work; auto: when the structure exceeds
+/// 16 MiB, where the loads miss the caches); the 8-wide one also nodes=full|compressed (the
+/// node layout) and order=distance|octant (how closest-hit rays order the children they
+/// visit).
 #include <string>
 #include <vector>
 

@@ -1,7 +1,7 @@
 #include "penumbra/accel/build/treelet_opt.h"
 
-#include <cstdint>
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <tuple>
 #include <utility>
@@ -12,8 +12,8 @@
 namespace penumbra {
 namespace {
 
-/// Subtrees per treelet: the paper's choice (its figure 6: 5 gives less, 8 and more cost much
-/// more time for little).
+/// Subtrees per treelet, the paper's choice: the subsets, and so the time, double with each
+/// one more.
 constexpr int kTreeletLeaves = 7;
 constexpr int kSubsets = 1 << kTreeletLeaves;
 
