@@ -231,6 +231,18 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
           if (tmin > hit.t) goto pop;  // as the deferred entry would have been dropped
           index = second;
         } else {
+          if constexpr (kAnyHit) {
+            // Any hit ends the query, in whatever order the cells are tried: a far child that
+            // is a leaf is tested before the near one's subtree is descended, as the BVH tests
+            // leaves first (occlusion rays +2-9 % x Embree, shadow rays +1-3 %; docs/accel.md).
+            if (!second_empty && nodes[second].is_leaf() && !nodes[first].is_leaf()) {
+              stack[sp++] = {first, tmin, min_keep(tp + slack, tmax)};
+              tmin = max_keep(tp - slack, tmin);
+              index = second;
+              n = nodes[index];
+              continue;
+            }
+          }
           if (!second_empty) stack[sp++] = {second, max_keep(tp - slack, tmin), tmax};
           tmax = min_keep(tp + slack, tmax);
           index = first;
