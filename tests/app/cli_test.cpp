@@ -207,6 +207,35 @@ TEST_F(CliTest, AccelBenchBatchQueriesFindTheSingleQueriesHits) {
   }
 }
 
+// --embree-robust builds Embree's scene in its robust mode: its row and every row's
+// `embree_mode` say so, the ratios are against it, and its hits still agree with ours (the same
+// rays; at most 1 % of them differing, hit against miss or t). Without Embree the flag is
+// accepted and nothing names a mode.
+TEST_F(CliTest, AccelBenchComparesWithEmbreeInItsRobustMode) {
+  const std::string common = "accel-bench " + scene("meshes/bunny.obj") +
+                             " --accel bvh --threads 1 --repeat 1 --rays 3000 --image 32 --json ";
+  ASSERT_EQ(run(common + path("robust.json") + " --embree-robust"), 0) << err_;
+  const std::string robust_out = out_;
+  ASSERT_EQ(run(common + path("default.json")), 0) << err_;
+  const auto robust = nlohmann::json::parse(slurp(path("robust.json")));
+  const auto plain = nlohmann::json::parse(slurp(path("default.json")));
+  ASSERT_EQ(robust.size(), plain.size());
+  if (robust.size() == 1) {  // built without Embree
+    EXPECT_FALSE(robust[0].contains("embree_mode")) << robust.dump();
+    return;
+  }
+  ASSERT_EQ(robust.size(), 2u);
+  EXPECT_EQ(robust[0]["accel"], "embree:robust");
+  EXPECT_EQ(plain[0]["accel"], "embree");
+  EXPECT_NE(robust_out.find("robust mode"), std::string::npos) << robust_out;
+  for (size_t r = 0; r < 2; ++r) {
+    EXPECT_EQ(robust[r]["embree_mode"], "robust") << robust[r].dump();
+    EXPECT_EQ(plain[r]["embree_mode"], "default") << plain[r].dump();
+  }
+  EXPECT_GT(robust[1]["runs"][0]["incoherent_vs_embree"].get<double>(), 0.0);
+  EXPECT_LE(robust[1]["embree_mismatches"].get<int>(), 30) << robust[1].dump();
+}
+
 // Meshes that would give NaN statistics or trip Embree are refused before any build, naming
 // the file and the vertex; collide checks its meshes the same way.
 TEST_F(CliTest, AccelBenchAndCollideRefuseEmptyAndOutOfRangeMeshes) {

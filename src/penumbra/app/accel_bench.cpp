@@ -300,6 +300,10 @@ void add_accel_bench_command(CLI::App& app) {
                "Trace through the batch queries (intersect_batch, occluded_batch) against "
                "Embree's stream API (rtcIntersect1M, rtcOccluded1M; coherent for the primary "
                "rays) instead of single queries against rtcIntersect1 and rtcOccluded1");
+  cmd->add_flag("--embree-robust", args->embree_robust,
+                "Build Embree's scene with RTC_SCENE_FLAG_ROBUST (conservative box tests, "
+                "watertight triangle test: our structures' guarantees) instead of its defaults; "
+                "its row is then 'embree:robust'");
   cmd->add_option("--repeat", args->repeat,
                   "Runs per measurement (default 3): build times and rates are medians; each run "
                   "of a structure alternates with Embree's every 131072 rays, and 'x embree' is "
@@ -464,11 +468,12 @@ void run_accel_bench(const AccelBenchArgs& args) {
       std::vector<double> ms;
       for (int k = 0; k < args.repeat; ++k) {
         embree.reset();  // each build from the same state: the previous one's memory freed
-        embree.emplace(mesh, build_threads);
+        embree.emplace(mesh, build_threads, args.embree_robust);
         ms.push_back(embree->build_ms());
       }
       row.build_ms = median(ms);
     }
+    if (embree->robust()) row.accel = "embree:robust";  // as Embree reports its mode
     row.bytes = embree->bytes();
     measure(row, rays, threads, args.repeat, embree_side, static_cast<const ES*>(nullptr),
             &rays.reference);

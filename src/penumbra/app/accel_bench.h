@@ -27,6 +27,9 @@ struct AccelBenchArgs {
   int repeat = 3;
   /// Trace through the batch queries against Embree's stream API (--batch).
   bool batch = false;
+  /// Build Embree's scene in its robust mode (--embree-robust): the same guarantees as ours
+  /// (no ray through a shared edge, no box missed by rounding) instead of Embree's defaults.
+  bool embree_robust = false;
 };
 
 /// Registers the `accel-bench` subcommand on `app`.

@@ -81,6 +81,11 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
       " hits differing from Embree's, hit vs miss or t beyond 1e-4 relative; ties: same t,\n"
       " another triangle)\n",
       thread_label(build_threads), repeat);
+  for (const BenchRow& r : rows)
+    if (r.accel == "embree:robust")
+      fmt::print(
+          "(Embree in its robust mode, RTC_SCENE_FLAG_ROBUST: conservative box tests and its\n"
+          " watertight triangle test, the guarantees of our structures)\n");
   if (batch)
     fmt::print(
         "(batch queries: intersect_batch and occluded_batch on 256 rays at a time, against\n"
@@ -91,6 +96,11 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
                       const std::string& mesh, size_t triangles, int build_threads, bool batch) {
   nlohmann::json out = nlohmann::json::array();
+  // Which Embree the ratios are against, when one ran (accel-bench --embree-robust).
+  std::string embree_mode;
+  for (const BenchRow& r : rows)
+    if (r.accel == "embree" || r.accel == "embree:robust")
+      embree_mode = r.accel == "embree" ? "default" : "robust";
   for (const BenchRow& r : rows) {
     nlohmann::json runs = nlohmann::json::array();
     for (const BenchRates& t : r.rates) {
@@ -116,6 +126,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
                         {"queries", batch ? "batch" : "single"},
                         {"bytes", r.bytes},
                         {"runs", runs}};
+    if (!embree_mode.empty()) o["embree_mode"] = embree_mode;
     if (r.nodes) o["nodes"] = *r.nodes;
     if (r.depth) o["depth"] = *r.depth;
     if (r.refs_per_prim) o["refs_per_prim"] = *r.refs_per_prim;

@@ -21,7 +21,8 @@ struct BenchRates {
       bounce_vs_embree, shadow_vs_embree;
 };
 
-/// The measurements of one structure (or of Embree).
+/// The measurements of one structure (or of Embree: "embree", or "embree:robust" in its robust
+/// mode).
 struct BenchRow {
   std::string accel;                    ///< name with parameters, or "embree"
   double build_ms = 0;                  ///< wall time of the build

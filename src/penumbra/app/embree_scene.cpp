@@ -45,7 +45,8 @@ bool monitor(void* user, ssize_t bytes, bool) {
 }
 }  // namespace
 
-EmbreeScene::EmbreeScene(const TriangleMesh& mesh, int threads) : impl_(std::make_unique<Impl>()) {
+EmbreeScene::EmbreeScene(const TriangleMesh& mesh, int threads, bool robust)
+    : impl_(std::make_unique<Impl>()) {
   Impl& m = *impl_;
   m.device = rtcNewDevice(fmt::format("threads={}", threads).c_str());
   if (!m.device) throw Error("embree: cannot create a device");
@@ -59,6 +60,7 @@ EmbreeScene::EmbreeScene(const TriangleMesh& mesh, int threads) : impl_(std::mak
   }
   const Timer timer;
   m.scene = rtcNewScene(m.device);
+  if (robust) rtcSetSceneFlags(m.scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry geom = rtcNewGeometry(m.device, RTC_GEOMETRY_TYPE_TRIANGLE);
   rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, m.vertices.data(),
                              0, 3 * sizeof(float), mesh.positions.size());
@@ -79,6 +81,9 @@ double EmbreeScene::build_ms() const {
 }
 size_t EmbreeScene::bytes() const {
   return size_t(std::max(0LL, impl_->bytes.load()));
+}
+bool EmbreeScene::robust() const {
+  return (rtcGetSceneFlags(impl_->scene) & RTC_SCENE_FLAG_ROBUST) != 0;
 }
 
 bool EmbreeScene::intersect(const Ray& ray, Hit& hit) const {
@@ -161,7 +166,7 @@ bool have_embree() {
   return false;
 }
 struct EmbreeScene::Impl {};
-EmbreeScene::EmbreeScene(const TriangleMesh&, int) {
+EmbreeScene::EmbreeScene(const TriangleMesh&, int, bool) {
   throw Error("this penumbra was built without Embree");
 }
 EmbreeScene::~EmbreeScene() = default;
@@ -170,6 +175,9 @@ double EmbreeScene::build_ms() const {
 }
 size_t EmbreeScene::bytes() const {
   return 0;
+}
+bool EmbreeScene::robust() const {
+  return false;
 }
 bool EmbreeScene::intersect(const Ray&, Hit&) const {
   return false;

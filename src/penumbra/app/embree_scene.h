@@ -20,7 +20,9 @@ bool have_embree();
 class EmbreeScene {
  public:
   /// Builds over `mesh` with `threads` build threads (0 = all); throws Error on Embree errors.
-  EmbreeScene(const TriangleMesh& mesh, int threads);
+  /// `robust` sets RTC_SCENE_FLAG_ROBUST: conservative box tests and Embree's watertight
+  /// (Pluecker) triangle test, the guarantees our own structures give; off, Embree's defaults.
+  EmbreeScene(const TriangleMesh& mesh, int threads, bool robust = false);
   ~EmbreeScene();
   EmbreeScene(const EmbreeScene&) = delete;
   EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -29,6 +31,8 @@ class EmbreeScene {
   double build_ms() const;
   /// Bytes Embree allocated, as reported by its memory monitor.
   size_t bytes() const;
+  /// True when the scene is in Embree's robust mode, as Embree reports the scene's flags.
+  bool robust() const;
   /// Closest hit on [tmin, tmax]; fills t and prim (the triangle index) of `hit`.
   bool intersect(const Ray& ray, Hit& hit) const;
   /// True when anything is hit on [tmin, tmax].
