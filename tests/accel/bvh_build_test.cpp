@@ -4,12 +4,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/build/bvh_split.h"
+#include "penumbra/accel/build/prim_ref.h"
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
@@ -81,6 +84,39 @@ double tree_cost(const BinaryBvh& t, double trav) {
     cost += n.bounds().surface_area() * (n.is_leaf() ? double(n.count) : trav);
   }
   return cost / t.nodes[0].bounds().surface_area();
+}
+
+// make_prim_refs leaves out exactly the primitives with an empty box and the triangles with two
+// bit-identical vertices (never hit: geometry/triangle.h), on the four-lane path (all
+// triangles) and the generic one (a sphere added), keeping id order.
+TEST(PrimRefs, TrianglesNoRayCanHitAreLeftOut) {
+  const auto bits = [](Vec3 v) {
+    return std::array<uint32_t, 3>{std::bit_cast<uint32_t>(v.x), std::bit_cast<uint32_t>(v.y),
+                                   std::bit_cast<uint32_t>(v.z)};
+  };
+  for (bool with_sphere : {false, true}) {
+    TestScene s = degenerate_triangles(21);
+    if (with_sphere) s.prims.add_sphere({Vec3(0.5f), 0.5f}, 1);
+    SCOPED_TRACE(with_sphere ? "generic path" : "triangle path");
+    EXPECT_EQ(s.prims.all_triangles(), !with_sphere);
+    const PrimRefs refs = make_prim_refs(s.prims);
+    std::vector<uint32_t> ids;
+    for (const PrimRef& r : refs.refs) ids.push_back(r.id);
+    EXPECT_TRUE(std::is_sorted(ids.begin(), ids.end()));
+    size_t repeated = 0;
+    for (uint32_t id = 0; id < s.prims.size(); ++id) {
+      bool expect = !s.prims.prim_bounds(id).empty();
+      if (s.prims.kind(id) == PrimKind::kTriangle) {
+        const Vec3* v = s.prims.triangle(id);
+        const bool rep = bits(v[0]) == bits(v[1]) || bits(v[1]) == bits(v[2]) ||
+                         bits(v[0]) == bits(v[2]);
+        repeated += expect && rep;
+        expect = expect && !rep;
+      }
+      EXPECT_EQ(std::binary_search(ids.begin(), ids.end(), id), expect) << id;
+    }
+    EXPECT_GT(repeated, 100u);  // a sixth of the scene's 1000 triangles
+  }
 }
 
 TEST(BvhBuild, MethodParametersAreParsedAndChecked) {

@@ -399,7 +399,7 @@ TEST(KdTree, TreeInvariantsHold) {
         }
       }
       for (uint32_t id = 0; id < s.prims.size(); ++id)
-        EXPECT_EQ(referenced[id] > 0, !s.prims.prim_bounds(id).empty()) << id;
+        EXPECT_EQ(referenced[id] > 0, referenced_by_structures(s.prims, id)) << id;
       EXPECT_EQ(st.nodes, 2 * leaves - 1);
       EXPECT_EQ(extra_stat(kd, "stored nodes"), double(kd.nodes().size()));
       EXPECT_EQ(extra_stat(kd, "empty leaves"), double(empty_leaves));

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "penumbra/accel/build/prim_ref.h"
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/rng.h"
 #include "penumbra/core/transform.h"
@@ -139,6 +140,10 @@ TestScene mixed_shapes(uint64_t seed) {
     add_triangle(s.prims, a, a + random_dir(rng) * 0.4f, a + random_dir(rng) * 0.4f);
   }
   return s;
+}
+
+bool referenced_by_structures(const PrimitiveSet& prims, uint32_t id) {
+  return !prims.prim_bounds(id).empty() && !never_hit(prims, id);
 }
 
 TestScene degenerate_triangles(uint64_t seed) {

@@ -29,6 +29,9 @@ TestScene thin_and_large(uint64_t seed);
 TestScene mixed_shapes(uint64_t seed);
 /// Ordinary triangles mixed with zero-area, NaN-vertex and infinite-vertex triangles.
 TestScene degenerate_triangles(uint64_t seed);
+/// True for a primitive a structure must reference: its box is not empty and never_hit
+/// (accel/build/prim_ref.h) does not rule it out.
+bool referenced_by_structures(const PrimitiveSet& prims, uint32_t id);
 /// `scene` with every point p mapped to p * scale + offset (sphere radii and edges scaled),
 /// named after the map: for the differential tests at extreme magnitudes.
 TestScene scaled(const TestScene& scene, float scale, Vec3 offset);

@@ -157,6 +157,33 @@ TEST(Triangle, DegenerateAndNonFiniteTrianglesAreNeverHit) {
   }
 }
 
+// Two identical vertices make the determinant exactly zero (repeated_vertex's argument), so no
+// ray hits such a triangle, whichever two vertices they are, not even a ray through the segment
+// it spans, at any scale; the structures leave these triangles out on that ground. +0 and -0 are
+// different bits, so they do not make a vertex repeated.
+TEST(Triangle, RepeatedVertexTrianglesAreNeverHit) {
+  Pcg32 rng(11, 5);
+  int through_segment = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const float scale = std::ldexp(1.0f, int(rng.next_bounded(41)) - 20);
+    const Vec3 p = Vec3{rng.next_float(), rng.next_float(), rng.next_float()} * scale;
+    const Vec3 q = p + random_dir(rng) * scale;
+    const Vec3 target = p + (q - p) * rng.next_float();
+    const Vec3 d = random_dir(rng), o = target - d * (3.0f * scale);
+    const Vec3 tris[3][3] = {{p, p, q}, {q, p, p}, {p, q, p}};
+    for (const auto& v : tris) {
+      EXPECT_TRUE(repeated_vertex(v[0], v[1], v[2]));
+      EXPECT_FALSE(trace(o, d, v[0], v[1], v[2]).hit) << trial;
+    }
+    // The same ray hits a proper triangle with that segment as an edge about half the time.
+    through_segment += trace(o, d, p, q, p + cross(q - p, d) * 2.0f).hit;
+  }
+  EXPECT_GT(through_segment, 5000);  // the rays do pass where the segment is
+  EXPECT_FALSE(repeated_vertex({0, 0, 1}, {1, 0, 0}, {0, 1, 0}));
+  EXPECT_FALSE(repeated_vertex({0.0f, 1, 2}, {-0.0f, 1, 2}, {3, 4, 5}));
+  EXPECT_TRUE(repeated_vertex({-0.0f, 1, 2}, {3, 4, 5}, {-0.0f, 1, 2}));
+}
+
 // The watertight test's permutation and shear (PreparedRay's selects; a branchless rewrite was
 // tried and measured no faster, docs/accel.md) against the rule as written in the paper (kz the
 // axis of largest |d|, ties resolved as max_dimension resolves them; x and y the next two axes

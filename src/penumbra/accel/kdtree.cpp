@@ -72,12 +72,13 @@ void KdTree::build(const PrimitiveSet& prims) {
   nodes_ = {}, refs_ = {}, blocks_ = {};  // releasing the memory of a previous build
   bounds_ = {};
   stats_ = {};
-  // One reference per primitive with finite bounds; zeros as +0 so that boxes compare alike.
+  // One reference per primitive with finite bounds that a ray can hit (never_hit); zeros as +0
+  // so that boxes compare alike.
   std::vector<KdPrim> refs;
   refs.reserve(prims.size());
   for (uint32_t id = 0; id < prims.size(); ++id) {
     Bounds3 b = prims.prim_bounds(id);
-    if (b.empty()) continue;
+    if (b.empty() || never_hit(prims, id)) continue;
     b.lo = b.lo + Vec3(0.0f), b.hi = b.hi + Vec3(0.0f);
     bounds_.extend(b);
     refs.push_back({b, id});

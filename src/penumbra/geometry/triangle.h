@@ -4,6 +4,7 @@
 /// through a shared edge or vertex hits at least one of them. Degenerate (zero-area) and
 /// non-finite triangles are never hit.
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "penumbra/geometry/float_error.h"
@@ -61,6 +62,20 @@ inline bool intersect_triangle(const PreparedRay& pr, Vec3 a, Vec3 b, Vec3 c, fl
   u = V * inv;
   v = W * inv;
   return t > tmin && t < tmax;  // guards against rounding at the interval ends
+}
+
+/// True when two vertices of (a, b, c) are the same (bit for bit). intersect_triangle never hits
+/// such a triangle: with b = c, say, the edge function U is fl(p q) - fl(q p) = 0 in float and in
+/// double, and W = -V exactly (rounding is symmetric), so det = (U + V) + W is exactly zero; a = b
+/// and a = c likewise. Structures leave these triangles out of their leaves (a tenth of the
+/// triangles of some CAD meshes, whose every test would take the double-precision path).
+inline bool repeated_vertex(Vec3 a, Vec3 b, Vec3 c) {
+  const auto same = [](Vec3 p, Vec3 q) {
+    return std::bit_cast<uint32_t>(p.x) == std::bit_cast<uint32_t>(q.x) &&
+           std::bit_cast<uint32_t>(p.y) == std::bit_cast<uint32_t>(q.y) &&
+           std::bit_cast<uint32_t>(p.z) == std::bit_cast<uint32_t>(q.z);
+  };
+  return same(a, b) || same(b, c) || same(a, c);
 }
 
 }  // namespace penumbra

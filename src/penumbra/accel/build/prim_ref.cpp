@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "penumbra/core/parallel.h"
+#include "penumbra/geometry/triangle.h"
 
 #if defined(__SSE4_1__)
 #include <smmintrin.h>
@@ -27,7 +28,7 @@ ChunkTotals generic_refs(const PrimitiveSet& prims, size_t begin, size_t end, Pr
   for (size_t i = begin; i < end; ++i) {
     const Bounds3 box = prims.prim_bounds(static_cast<uint32_t>(i));
     PrimRef& r = out[i];
-    if (box.empty()) {
+    if (box.empty() || never_hit(prims, static_cast<uint32_t>(i))) {
       r = {Vec3(0.0f), kNoPrim, Vec3(0.0f), 0};
       continue;
     }
@@ -42,7 +43,8 @@ ChunkTotals generic_refs(const PrimitiveSet& prims, size_t begin, size_t end, Pr
 #if defined(__SSE4_1__)
 /// generic_refs for a set of static triangles, four lanes at a time: the same boxes (a triangle
 /// is valid when its nine coordinates are at most kMaxCoordinate in magnitude, which also
-/// rejects NaN and infinities, as prim_bounds does) and the same totals.
+/// rejects NaN and infinities, as prim_bounds does, and no two of its vertices are the same)
+/// and the same totals.
 ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, PrimRef* out) {
   const __m128 limit = _mm_set1_ps(kMaxCoordinate);
   const __m128 sign = _mm_set1_ps(-0.0f);
@@ -60,8 +62,14 @@ ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, P
     const __m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, a), limit),
                                             _mm_cmple_ps(_mm_andnot_ps(sign, b), limit)),
                                  _mm_cmple_ps(_mm_andnot_ps(sign, c), limit));
+    // Two vertices the same, bit for bit (repeated_vertex): never hit.
+    const auto same = [](__m128 p, __m128 q) {
+      return (_mm_movemask_ps(
+                  _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(p), _mm_castps_si128(q)))) &
+              7) == 7;
+    };
     PrimRef& r = out[i];
-    if ((_mm_movemask_ps(ok) & 7) != 7) {
+    if ((_mm_movemask_ps(ok) & 7) != 7 || same(a, b) || same(b, c) || same(a, c)) {
       r = {Vec3(0.0f), kNoPrim, Vec3(0.0f), 0};
       continue;
     }
@@ -86,6 +94,12 @@ ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, P
 }
 #endif
 }  // namespace
+
+bool never_hit(const PrimitiveSet& prims, uint32_t id) {
+  if (prims.kind(id) != PrimKind::kTriangle || prims.moving(id)) return false;
+  const Vec3* v = prims.triangle(id);
+  return repeated_vertex(v[0], v[1], v[2]);
+}
 
 PrimRefs make_prim_refs(const PrimitiveSet& prims, size_t spare) {
   const size_t n = prims.size();
@@ -112,7 +126,8 @@ PrimRefs make_prim_refs(const PrimitiveSet& prims, size_t spare) {
     out.centroid_bounds.extend(t.centroids);
     valid += t.valid;
   }
-  // Drop the invalid references, keeping id order (rare: only non-finite primitives).
+  // Drop the invalid references, keeping id order (non-finite primitives, and triangles that no
+  // ray can hit).
   if (valid != n)
     out.refs.erase(std::remove_if(out.refs.begin(), out.refs.end(),
                                   [](const PrimRef& r) { return r.id == kNoPrim; }),

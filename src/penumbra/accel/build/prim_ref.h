@@ -41,9 +41,14 @@ struct PrimRefs {
   Bounds3 centroid_bounds;  ///< bounds of centroid2() over all refs
 };
 
-/// References to every primitive of `prims` with a non-empty box (others can never be hit and are
-/// skipped). Zero coordinates are normalised to +0 so that min/max reductions do not depend on
-/// the order of combination (the build is then identical for every thread count). Parallel.
+/// True for a primitive that no ray can hit though its box is not empty: a static triangle with
+/// two identical vertices (repeated_vertex in geometry/triangle.h). Structures leave it out.
+bool never_hit(const PrimitiveSet& prims, uint32_t id);
+
+/// References to every primitive of `prims` with a non-empty box that never_hit does not rule
+/// out (others can never be hit and are skipped). Zero coordinates are normalised to +0 so that
+/// min/max reductions do not depend on the order of combination (the build is then identical
+/// for every thread count). Parallel.
 /// `spare` reserves room for that many more references (spatial splits add them in place).
 PrimRefs make_prim_refs(const PrimitiveSet& prims, size_t spare = 0);
 
