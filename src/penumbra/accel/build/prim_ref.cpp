@@ -43,8 +43,8 @@ ChunkTotals generic_refs(const PrimitiveSet& prims, size_t begin, size_t end, Pr
 #if defined(__SSE4_1__)
 /// generic_refs for a set of static triangles, four lanes at a time: the same boxes (a triangle
 /// is valid when its nine coordinates are at most kMaxCoordinate in magnitude, which also
-/// rejects NaN and infinities, as prim_bounds does, and no two of its vertices are the same)
-/// and the same totals.
+/// rejects NaN and infinities, as prim_bounds does, and repeated_vertex is false) and the same
+/// totals.
 ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, PrimRef* out) {
   const __m128 limit = _mm_set1_ps(kMaxCoordinate);
   const __m128 sign = _mm_set1_ps(-0.0f);
@@ -53,7 +53,8 @@ ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, P
   __m128 blo = inf, bhi = _mm_sub_ps(zero, inf), clo = inf, chi = _mm_sub_ps(zero, inf);
   ChunkTotals t;
   for (size_t i = begin; i < end; ++i) {
-    const float* v = &prims.triangle(static_cast<uint32_t>(i))[0].x;
+    const Vec3* tri = prims.triangle(static_cast<uint32_t>(i));
+    const float* v = &tri[0].x;
     // Vertices 0 and 1 from 16-byte loads inside the triangle's 36 bytes; vertex 2 from the
     // load ending at its last coordinate, rotated (lane 3 is never used).
     const __m128 a = _mm_loadu_ps(v), b = _mm_loadu_ps(v + 3);
@@ -62,14 +63,8 @@ ChunkTotals triangle_refs(const PrimitiveSet& prims, size_t begin, size_t end, P
     const __m128 ok = _mm_and_ps(_mm_and_ps(_mm_cmple_ps(_mm_andnot_ps(sign, a), limit),
                                             _mm_cmple_ps(_mm_andnot_ps(sign, b), limit)),
                                  _mm_cmple_ps(_mm_andnot_ps(sign, c), limit));
-    // Two vertices the same, bit for bit (repeated_vertex): never hit.
-    const auto same = [](__m128 p, __m128 q) {
-      return (_mm_movemask_ps(
-                  _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_castps_si128(p), _mm_castps_si128(q)))) &
-              7) == 7;
-    };
     PrimRef& r = out[i];
-    if ((_mm_movemask_ps(ok) & 7) != 7 || same(a, b) || same(b, c) || same(a, c)) {
+    if ((_mm_movemask_ps(ok) & 7) != 7 || repeated_vertex(tri[0], tri[1], tri[2])) {
       r = {Vec3(0.0f), kNoPrim, Vec3(0.0f), 0};
       continue;
     }
