@@ -60,6 +60,9 @@ inline U32x16 reverse_bits(U32x16 x) {
   const __m512i bswap = _mm512_set4_epi32(0x0c0d0e0f, 0x08090a0b, 0x04050607, 0x00010203);
   return U32x16(_mm512_shuffle_epi8(bits, bswap));
 }
+// The overload above hides low_discrepancy.h's (scalar and eight-lane) from sobol_lanes, whose
+// eight-lane instantiations (SobolLanes) need them: declared here beside it.
+using penumbra::reverse_bits;
 
 #endif
 
