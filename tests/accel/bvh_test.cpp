@@ -394,6 +394,37 @@ TEST(WideBvh, OctantOrderMeetsTheNearChildFirstOnTheDiagonals) {
   EXPECT_THROW(make_accelerator("bvh:order=random"), Error);
 }
 
+// anyhit=span and anyhit=lanes choose which inner child an any-hit ray visits first; the answer
+// must not depend on it. Both against brute force, single and in interleaved batches (which
+// take the same choice in their own step), on scenes whose rays start inside, between and on
+// surfaces, so that nodes keep several inner children and several leaves.
+TEST(WideBvh, AnyHitOrdersGiveBruteForcesAnswers) {
+  for (const TestScene& scene : {room_with_boxes(40, 5), random_soup(3000, 6), torus(40, 30)}) {
+    auto brute = make_accelerator("brute");
+    brute->build(scene.prims);
+    const std::vector<Ray> rays = mixed_rays(scene.prims, 4000, 7);
+    for (const char* name : {"bvh:anyhit=span", "bvh:anyhit=lanes", "bvh4:anyhit=span",
+                             "bvh:anyhit=span,interleave=on", "bvh:anyhit=lanes,interleave=on",
+                             "bvh:anyhit=span,nodes=compressed"}) {
+      auto acc = make_accelerator(name);
+      acc->build(scene.prims);
+      std::vector<uint8_t> batch(rays.size(), 2);
+      acc->occluded_batch(rays, batch, BatchOrder::kIncoherent);
+      size_t blocked = 0;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        const bool expected = brute->occluded(rays[i]);
+        blocked += expected;
+        ASSERT_EQ(acc->occluded(rays[i]), expected) << scene.name << " " << name << " ray " << i;
+        ASSERT_EQ(batch[i], uint8_t(expected)) << scene.name << " " << name << " ray " << i;
+      }
+      // Both answers occur, so a traversal that always answered one way would fail.
+      EXPECT_GT(blocked, rays.size() / 10) << scene.name;
+      EXPECT_LT(blocked, rays.size()) << scene.name;
+    }
+  }
+  EXPECT_THROW(make_accelerator("bvh:anyhit=nearest"), Error);
+}
+
 // The default order visits a node's children nearest first, whatever slots they hold and
 // however many the ray enters (two, the sorting networks of three and four, more): k small
 // tetrahedra in a row along x (a leaf each, the root's k children), and a ray along the row from

@@ -224,6 +224,27 @@ unsigned leaf_lanes(const Node& n) {
   return m;
 }
 
+/// The child an any-hit ray visits first among the children it hits (`mask`; `leaves`: those of
+/// them that are leaves). A leaf when one is hit: a hit there ends the query with no node
+/// fetched. Otherwise, with `span_order` (anyhit=span), the inner child whose box the ray
+/// crosses over the longest span, the likeliest to hold a surface it hits; else the lowest lane
+/// (anyhit=lanes). Nearest first, as closest-hit rays go, and sorting all of them by span cost
+/// more than they saved (docs/accel.md, "2026-12-05, tenth session").
+template <int W>
+int any_hit_first(unsigned mask, unsigned leaves, FloatW<W> near, FloatW<W> far, bool span_order) {
+  if (leaves) return std::countr_zero(leaves);
+  int first = std::countr_zero(mask);
+  if (span_order && (mask & (mask - 1))) {
+    alignas(32) float span[W];
+    (far - near).store(span);
+    for (unsigned m = mask & (mask - 1); m; m &= m - 1) {
+      const int i = std::countr_zero(m);
+      if (span[i] > span[first]) first = i;
+    }
+  }
+  return first;
+}
+
 }  // namespace
 
 template <int W, class Node>
@@ -248,6 +269,18 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
   if (order == "octant" && W != 8)
     throw Error(fmt::format("{}: order=octant needs width 8", params.name()));
   octant_order_ = order == "octant";
+  // anyhit=auto: the span order where the target has AVX-512 (faster on the Intel Xeon
+  // measured), the lane order elsewhere (faster on the Zen 2 measured; docs/accel.md,
+  // "2026-12-05, tenth session").
+  const std::string anyhit = params.get_string("anyhit", "auto");
+  if (anyhit != "auto" && anyhit != "span" && anyhit != "lanes")
+    throw Error(fmt::format("{}: parameter 'anyhit' must be auto, span or lanes, got '{}'",
+                            params.name(), anyhit));
+#if defined(__AVX512F__)
+  any_hit_span_ = anyhit != "lanes";
+#else
+  any_hit_span_ = anyhit == "span";
+#endif
   const std::string interleave = params.get_string("interleave", "auto");
   if (interleave != "auto" && interleave != "on" && interleave != "off")
     throw Error(fmt::format("{}: parameter 'interleave' must be auto, on or off, got '{}'",
@@ -484,9 +517,10 @@ template <bool kAnyHit, bool kTriangles>
         prefetch(n.child[i], n.count[i]);
       };
       if constexpr (kAnyHit) {
-        // As traverse(): the first leaf child now, the other leaves before the inner children.
+        // As traverse(): one child now (any_hit_first), the other leaves before the inner
+        // children.
         const unsigned leaves = mask & leaf_lanes(n);
-        const int i0 = std::countr_zero(leaves ? leaves : mask);
+        const int i0 = any_hit_first<W>(mask, leaves, near, far, any_hit_span_);
         mask &= ~(1u << i0);
         for (unsigned m = mask & ~leaves; m; m &= m - 1) defer(std::countr_zero(m), 0.0f);
         for (unsigned m = mask & leaves; m; m &= m - 1) defer(std::countr_zero(m), 0.0f);
@@ -595,9 +629,10 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
         // Any hit ends the query, so distances do not matter (hit.t never shrinks before the
         // end). Leaves first: a leaf hit ends the query with no further node fetched, so the
         // first leaf child hit is tested now and the other leaves are popped before the inner
-        // children (pushed last, taken first).
+        // children (pushed last, taken first); with no leaf hit, the inner child the ray
+        // crosses longest goes first (any_hit_first).
         const unsigned leaves = mask & leaf_lanes(n);
-        const int i0 = std::countr_zero(leaves ? leaves : mask);
+        const int i0 = any_hit_first<W>(mask, leaves, near, far, any_hit_span_);
         mask &= ~(1u << i0);
         const auto defer = [&](unsigned lanes) {
           for (; lanes; lanes &= lanes - 1) {

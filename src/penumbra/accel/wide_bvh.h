@@ -15,7 +15,9 @@
 /// so that each ray's next node loads while the others work; auto: when the structure exceeds
 /// 16 MiB, where the loads miss the caches); the 8-wide one also nodes=full|compressed (the
 /// node layout) and order=distance|octant (how closest-hit rays order the children they
-/// visit).
+/// visit); anyhit=auto|span|lanes (which inner child an any-hit ray visits first when no leaf
+/// is hit: the longest span through its box, or the lowest lane; auto: span on AVX-512
+/// targets, lanes elsewhere).
 #include <string>
 #include <vector>
 
@@ -96,6 +98,9 @@ class WideBvh final : public Accelerator {
   /// order=octant: closest-hit rays visit the children a node's test keeps in the order of the
   /// ray's octant (slots laid out for it by the collapse) instead of by entry distance.
   bool octant_order_ = false;
+  /// anyhit=span: an any-hit ray with no leaf among the children a node's test keeps visits
+  /// the one its box crosses longest first; anyhit=lanes: the lowest lane (auto: by target).
+  bool any_hit_span_ = false;
   /// interleave=on|off|auto (1, 0, -1): batch queries interleave their rays; auto: when the
   /// structure takes more than kInterleaveBytes, beyond what the caches hold.
   int interleave_mode_ = -1;
