@@ -7,6 +7,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
+  python3   # the test that compiles every instruction-set branch (scripts/check_isa.py)
   libtbb-dev nlohmann-json3-dev libcli11-dev libfmt-dev libopenexr-dev libpng-dev
   libjpeg62-turbo-dev   # image/jpeg.cpp: JPEG textures (glTF's usual image type)
   libtinygltf-dev   # header only: scene/gltf_model.cpp compiles the implementation
