@@ -42,14 +42,15 @@ def select():
     key = {os.path.relpath(p, os.path.join(ROOT, "src")): p for p in text}
     isa = {p for p, t in text.items() if ISA_MACRO.search(t)}
     stop = {key[h] for h in NO_PROPAGATE if h in key}
+    includes = {p: [key.get(inc) for inc in INCLUDE.findall(t)] for p, t in text.items()}
     # Fixed point over the include graph: a file depends on the ISA if it includes one that does.
     changed = True
     while changed:
         changed = False
-        for p, t in text.items():
+        for p, incs in includes.items():
             if p in isa:
                 continue
-            if any(key.get(inc) in isa - stop for inc in INCLUDE.findall(t)):
+            if any(inc in isa and inc not in stop for inc in incs):
                 isa.add(p)
                 changed = True
     return sorted(p for p in isa if p.endswith(".cpp"))
