@@ -2,6 +2,7 @@
 // over the same triangles in order: same primitive, and t, u, v to the bit.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <bit>
 #include <vector>
 
@@ -83,6 +84,66 @@ TEST(TriangleBlocks, MatchTheScalarTestBitForBit) {
   // The rays aim at the shared edge, so most must hit something (and many in second blocks).
   EXPECT_GT(hits, 10000u);
   EXPECT_GT(any_hits, 4000u);
+}
+
+TEST(TriangleBlocks, MatchTheScalarTestForRaysLeavingASurface) {
+  // Rays starting on one of the leaf's triangles (the origin a float barycentric combination of
+  // its vertices, so within rounding of its plane), as a path tracer's bounce and shadow rays
+  // do: the computed t of that triangle is then near zero, and the bound on t
+  // (triangle_t_error) decides whether it is hit: rejected where t lies within the bound,
+  // accepted where the rounded origin lies far enough off the plane for a true hit. The block
+  // test must decide as the scalar one does, to the bit, both ways.
+  Pcg32 rng(23, 5);
+  size_t rejected = 0, accepted = 0;
+  for (int it = 0; it < 20000; ++it) {
+    const float scale = it % 3 == 0 ? 1e-3f : (it % 3 == 1 ? 1.0f : 1e4f);
+    const Vec3 offset = Vec3(1.0f + rng.next_float(), -2.0f, 3.0f) * (scale * 10.0f);
+    const auto rv = [&] {
+      return offset + Vec3(rng.next_float(), rng.next_float(), rng.next_float()) * scale;
+    };
+    const uint32_t n = 1 + rng.next_bounded(12);
+    TriangleMesh mesh;
+    for (uint32_t i = 0; i < 3 * n; ++i) mesh.positions.push_back(rv());
+    for (uint32_t i = 0; i < 3 * n; ++i) mesh.indices.push_back(i);
+    PrimitiveSet prims;
+    prims.add_mesh(mesh, Transform(), 0);
+    std::vector<uint32_t> ids(n);
+    std::vector<PrimRef> refs(n);
+    for (uint32_t i = 0; i < n; ++i) ids[i] = i, refs[i].id = i;
+    TriangleBlocks blocks;
+    blocks.resize(TriangleBlocks::blocks_for(n));
+    blocks.fill(0, prims, refs);
+
+    const uint32_t from = rng.next_bounded(n);
+    const Vec3* v = prims.triangle(from);
+    const float b1 = rng.next_float(), b2 = rng.next_float() * (1.0f - b1);
+    Ray ray{v[0] * (1.0f - b1 - b2) + v[1] * b1 + v[2] * b2, {}};
+    ray.d = Vec3(rng.next_float() - 0.5f, rng.next_float() - 0.5f, rng.next_float() - 0.5f);
+    const PreparedRay pr(ray);
+
+    Hit expected, got;
+    expected.t = got.t = kInfinity;
+    const bool e = scalar_closest(prims, ids, pr, expected);
+    ASSERT_EQ(blocks.intersect<false>(BlockRay(pr), 0, n, got), e) << "iteration " << it;
+    EXPECT_EQ(got.prim, expected.prim) << "iteration " << it;
+    EXPECT_EQ(std::bit_cast<uint32_t>(got.t), std::bit_cast<uint32_t>(expected.t));
+    Hit any;
+    any.t = kInfinity;
+    EXPECT_EQ(blocks.intersect<true>(BlockRay(pr), 0, n, any), e) << "iteration " << it;
+    // Where the rounded origin lies in front of the triangle it leaves (its exact t, in double,
+    // above zero), the test decides near t = 0 by the bound: count both of its answers.
+    const auto dv = [](Vec3 p) { return std::array<double, 3>{p.x, p.y, p.z}; };
+    const auto e1 = dv(v[1] - v[0]), e2 = dv(v[2] - v[0]);  // exact: nearby floats
+    const std::array<double, 3> nrm = {e1[1] * e2[2] - e1[2] * e2[1],
+                                       e1[2] * e2[0] - e1[0] * e2[2],
+                                       e1[0] * e2[1] - e1[1] * e2[0]};
+    const auto o = dv(ray.o), p0 = dv(v[0]), d = dv(ray.d);
+    double num = 0, den = 0;
+    for (int a = 0; a < 3; ++a) num += (p0[a] - o[a]) * nrm[a], den += d[a] * nrm[a];
+    if (den != 0 && num / den > 0) ++(expected.prim == from ? accepted : rejected);
+  }
+  EXPECT_GT(rejected, 1000u);
+  EXPECT_GT(accepted, 100u);
 }
 
 TEST(TriangleBlocks, PaddingLanesAreNeverHit) {

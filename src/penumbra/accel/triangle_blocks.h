@@ -20,6 +20,7 @@
 #include "penumbra/geometry/float_error.h"
 #include "penumbra/geometry/hit.h"
 #include "penumbra/geometry/primitive_set.h"
+#include "penumbra/geometry/triangle.h"
 
 #if defined(__SSE__)
 #include <immintrin.h>
@@ -74,6 +75,21 @@ inline F vabs(F a) {
 template <class F>
 inline F vfmax(F a, F b) {
   return a < b ? b : a;
+}
+
+/// fmax(|a|, fmax(|b|, |c|)) lane-wise, to the same bits for lanes without NaN (a lane with a
+/// NaN is rejected before its value is used). With AVX-512 DQ and VL, two `vrangeps` (the larger
+/// magnitude, its sign cleared) instead of three absolute values and two maxima.
+template <class F>
+inline F max_abs3(F a, F b, F c) {
+#if defined(__AVX512DQ__) && defined(__AVX512VL__)
+  if constexpr (sizeof(F) == 32)
+    return (F)_mm256_range_ps((__m256)a, _mm256_range_ps((__m256)b, (__m256)c, 0x0b), 0x0b);
+  else
+    return (F)_mm_range_ps((__m128)a, _mm_range_ps((__m128)b, (__m128)c, 0x0b), 0x0b);
+#else
+  return vfmax(vabs(a), vfmax(vabs(b), vabs(c)));
+#endif
 }
 
 /// Bit i set where lane i of `m` is true (all ones).
@@ -255,18 +271,11 @@ template <bool kAnyHit, class F>
   const F inv = 1.0f / det;
   const F t = T * inv;
   // The conservative bound on the error of t (pbrt-v3 section 3.9.6), as in triangle.h.
-  const F max_zt = vfmax(vabs(az), vfmax(vabs(bz), vabs(cz)));
-  const F max_xt = vfmax(vabs(ax), vfmax(vabs(bx), vabs(cx)));
-  const F max_yt = vfmax(vabs(ay), vfmax(vabs(by), vabs(cy)));
-  const F delta_z = splat<F>(gamma(3)) * max_zt;
-  const F delta_x = splat<F>(gamma(5)) * (max_xt + max_zt);
-  const F delta_y = splat<F>(gamma(5)) * (max_yt + max_zt);
-  const F delta_e = splat<F>(2.0f) * (((splat<F>(gamma(2)) * max_xt) * max_yt + delta_y * max_xt) +
-                                      delta_x * max_yt);
-  const F max_e = vfmax(vabs(U), vfmax(vabs(V), vabs(W)));
-  const F delta_t = (splat<F>(3.0f) * (((splat<F>(gamma(3)) * max_e) * max_zt + delta_e * max_zt) +
-                                       delta_z * max_e)) *
-                    vabs(inv);
+  const F max_zt = max_abs3(az, bz, cz);
+  const F max_xt = max_abs3(ax, bx, cx);
+  const F max_yt = max_abs3(ay, by, cy);
+  const F max_e = max_abs3(U, V, W);
+  const F delta_t = triangle_t_error(max_e, max_xt, max_yt, max_zt) * vabs(inv);
   ok &= (t > delta_t) & (t > tmin) & (t < tmax);
   unsigned hits = mask_bits(ok);
   if (!hits) return false;
