@@ -132,7 +132,8 @@ TEST(TriangleBlocks, MatchTheScalarTestForRaysLeavingASurface) {
     // Where the rounded origin lies in front of the triangle it leaves (its exact t, in double,
     // above zero), the test decides near t = 0 by the bound: count both of its answers.
     const auto dv = [](Vec3 p) { return std::array<double, 3>{p.x, p.y, p.z}; };
-    const auto e1 = dv(v[1] - v[0]), e2 = dv(v[2] - v[0]);  // exact (Sterbenz: the coordinates lie within a factor 2)
+    // Exact in float (Sterbenz: each coordinate's values lie within a factor of 2).
+    const auto e1 = dv(v[1] - v[0]), e2 = dv(v[2] - v[0]);
     const std::array<double, 3> nrm = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                                        e1[0] * e2[1] - e1[1] * e2[0]};
     const auto o = dv(ray.o), p0 = dv(v[0]), d = dv(ray.d);
