@@ -112,12 +112,9 @@ def summarise(runs):
 def print_summary(summary, pairs):
     for s in summary:
         embree = s["cells"][0]["old_vs_embree"] is not None
-        basis = "x Embree" if embree else "Mrays/s"
-        print(f"{s['accel']}, {s['threads']} thread(s), {pairs} pair(s); new/old of {basis}")
-        if embree:
-            print(f"  {'':<11} {'old x Embree':>13} {'new x Embree':>13} {'new/old':>8} {'range':>11}")
-        else:
-            print(f"  {'':<11} {'old Mrays/s':>13} {'new Mrays/s':>13} {'new/old':>8} {'range':>11}")
+        unit = "x Embree" if embree else "Mrays/s"
+        print(f"{s['accel']}, {s['threads']} thread(s), {pairs} pair(s); new/old of {unit}")
+        print(f"  {'':<11} {'old ' + unit:>13} {'new ' + unit:>13} {'new/old':>8} {'range':>11}")
         for r in s["cells"]:
             old = r["old_vs_embree"] if embree else r["old_mrays"]
             new = r["new_vs_embree"] if embree else r["new_mrays"]
