@@ -6,12 +6,14 @@
 #include <cmath>
 #include <cstring>
 
+#include "penumbra/accel/auto_width_bvh.h"
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/build/bvh_split.h"
 #include "penumbra/accel/bvh.h"
 #include "penumbra/accel/registry.h"
 #include "penumbra/accel/traversal_cost.h"
+#include "penumbra/accel/wide_bvh.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
@@ -145,8 +147,18 @@ TEST(Bvh, ParametersAreReadAndChecked) {
   EXPECT_THROW(make_accelerator("bvh:bins=x"), Error);
   EXPECT_THROW(make_accelerator("bvh:leaves=4"), Error);  // misspelt: unknown parameter
   EXPECT_THROW(make_accelerator("bvh:width=3"), Error);
-  EXPECT_THROW(make_accelerator("bvh:width=16"), Error);
+  EXPECT_THROW(make_accelerator("bvh:width=12"), Error);
+  EXPECT_THROW(make_accelerator("bvh:width=32"), Error);
+  EXPECT_THROW(make_accelerator("bvh:width=wide"), Error);
   EXPECT_EQ(make_accelerator("bvh:width=2")->name(), "bvh:width=2");
+  EXPECT_EQ(make_accelerator("bvh:width=16")->name(), "bvh:width=16");
+  EXPECT_EQ(make_accelerator("bvh:width=auto")->name(), "bvh:width=auto");
+  // The compressed nodes and the octant order exist for width 8, which they imply.
+  EXPECT_NO_THROW(make_accelerator("bvh:nodes=compressed"));
+  EXPECT_NO_THROW(make_accelerator("bvh:order=octant"));
+  EXPECT_THROW(make_accelerator("bvh:width=16,nodes=compressed"), Error);
+  EXPECT_THROW(make_accelerator("bvh:width=16,order=octant"), Error);
+  EXPECT_THROW(make_accelerator("bvh:width=2,order=octant"), Error);  // unknown to the binary BVH
 }
 
 TEST(Bvh, ParameterVariantsAgreeWithBrute) {
@@ -403,9 +415,11 @@ TEST(WideBvh, AnyHitOrdersGiveBruteForcesAnswers) {
     auto brute = make_accelerator("brute");
     brute->build(scene.prims);
     const std::vector<Ray> rays = mixed_rays(scene.prims, 4000, 7);
-    for (const char* name : {"bvh:anyhit=span", "bvh:anyhit=lanes", "bvh4:anyhit=span",
-                             "bvh:anyhit=span,interleave=on", "bvh:anyhit=lanes,interleave=on",
-                             "bvh:anyhit=span,nodes=compressed"}) {
+    for (const char* name :
+         {"bvh:anyhit=span", "bvh:anyhit=lanes", "bvh4:anyhit=span", "bvh:width=16,anyhit=span",
+          "bvh:width=16,anyhit=lanes", "bvh:width=16,interleave=on",
+          "bvh:anyhit=span,interleave=on", "bvh:anyhit=lanes,interleave=on",
+          "bvh:anyhit=span,nodes=compressed"}) {
       auto acc = make_accelerator(name);
       acc->build(scene.prims);
       std::vector<uint8_t> batch(rays.size(), 2);
@@ -432,8 +446,8 @@ TEST(WideBvh, AnyHitOrdersGiveBruteForcesAnswers) {
 // are cut so that the ray misses them: their section under the ray is empty). Nearest first,
 // the traversal visits the root and the j nearest leaves, and culls the rest at the pop: 1 + j
 // nodes. Any other order of the first child or of the deferred ones visits more.
-TEST(WideBvh, DistanceOrderVisitsTwoToEightChildrenNearestFirst) {
-  for (int k = 2; k <= 8; ++k) {
+TEST(WideBvh, DistanceOrderVisitsTwoToSixteenChildrenNearestFirst) {
+  for (int k = 2; k <= 16; ++k) {
     for (int j = 1; j <= k; ++j) {
       for (const float dir : {1.0f, -1.0f}) {
         TriangleMesh m;
@@ -457,7 +471,8 @@ TEST(WideBvh, DistanceOrderVisitsTwoToEightChildrenNearestFirst) {
         }
         PrimitiveSet prims;
         prims.add_mesh(m, Transform(), 0);
-        auto bvh = make_accelerator("bvh:leaf=4");  // a leaf per tetrahedron
+        // A leaf per tetrahedron; 16-wide nodes past eight children.
+        auto bvh = make_accelerator(k <= 8 ? "bvh:leaf=4" : "bvh:leaf=4,width=16");
         bvh->build(prims);
         ASSERT_EQ(bvh->stats().max_depth, 1u) << k;  // one node: the leaves are its children
         ASSERT_EQ(bvh->stats().leaves, size_t(k));
@@ -473,6 +488,76 @@ TEST(WideBvh, DistanceOrderVisitsTwoToEightChildrenNearestFirst) {
       }
     }
   }
+}
+
+// width=auto (the default) takes 16-wide nodes above 2^17 primitives where the target has
+// AVX-512, 8-wide ones below, and reports which; its answers are those of the explicit widths
+// bit for bit, and a rebuild over a small set after a large one goes back to 8 (and the other way).
+TEST(AutoWidthBvh, ChoosesByTheSetsSizeAndAnswersAsTheExplicitWidths) {
+#if defined(__AVX512F__)
+  const int large_width = 16;
+#else
+  const int large_width = 8;
+#endif
+  EXPECT_EQ(AutoWidthBvh::width_for(AutoWidthBvh::kWide16Above), 8);
+  EXPECT_EQ(AutoWidthBvh::width_for(AutoWidthBvh::kWide16Above + 1), large_width);
+  const TestScene large = torus(400, 250);  // 200,000 triangles
+  const TestScene small = torus(40, 30);
+  ASSERT_GT(large.prims.size(), AutoWidthBvh::kWide16Above);
+  const auto width_stat = [](const Accelerator& a) {
+    for (const auto& [key, value] : a.stats().extra)
+      if (key == "width") return value;
+    return 0.0;
+  };
+  auto bvh = make_accelerator("bvh");
+  ASSERT_NE(dynamic_cast<const AutoWidthBvh*>(bvh.get()), nullptr);
+  for (const TestScene* scene : {&large, &small, &large}) {
+    bvh->build(scene->prims);
+    const int width = scene == &small ? 8 : large_width;
+    EXPECT_EQ(width_stat(*bvh), double(width)) << scene->name;
+    auto same = make_accelerator(width == 16 ? "bvh:width=16" : "bvh:width=8");
+    same->build(scene->prims);
+    EXPECT_EQ(bvh->stats().nodes, same->stats().nodes) << scene->name;
+    EXPECT_EQ(bvh->stats().bytes, same->stats().bytes) << scene->name;
+    const std::vector<Ray> rays = mixed_rays(scene->prims, 5000, 11);
+    std::vector<Hit> batch(rays.size()), batch_same(rays.size());
+    bvh->intersect_batch(rays, batch, BatchOrder::kIncoherent);
+    same->intersect_batch(rays, batch_same, BatchOrder::kIncoherent);
+    size_t hits = 0;
+    for (size_t i = 0; i < rays.size(); ++i) {
+      Hit a, b;
+      const bool ha = bvh->intersect(rays[i], a), hb = same->intersect(rays[i], b);
+      ASSERT_EQ(ha, hb) << scene->name << " ray " << i;
+      hits += ha;
+      if (ha) {
+        ASSERT_EQ(a.t, b.t) << scene->name << " ray " << i;
+        ASSERT_EQ(a.prim, b.prim) << scene->name << " ray " << i;
+        ASSERT_EQ(batch[i].t, b.t) << scene->name << " ray " << i;
+      }
+      ASSERT_EQ(bvh->occluded(rays[i]), same->occluded(rays[i])) << scene->name << " ray " << i;
+    }
+    EXPECT_GT(hits, rays.size() / 10) << scene->name;
+  }
+}
+
+// The 16-wide tree answers as brute force on a set large enough for several levels of 16-wide
+// nodes with every kind of child (inner, leaf, empty slots).
+TEST(WideBvh, SixteenWideAgreesWithBruteOnALargeSet) {
+  const TestScene s = random_soup(20000, 21);
+  auto brute = make_accelerator("brute");
+  brute->build(s.prims);
+  auto wide = make_accelerator("bvh:width=16");
+  wide->build(s.prims);
+  EXPECT_GE(wide->stats().max_depth, 3u);
+  const std::vector<Ray> rays = mixed_rays(s.prims, 3000, 22);
+  size_t differ = 0;
+  for (const Ray& r : rays) {
+    Hit a, b;
+    const bool ha = brute->intersect(r, a), hb = wide->intersect(r, b);
+    differ += ha != hb || (ha && (a.t != b.t || a.prim != b.prim));
+    differ += brute->occluded(r) != wide->occluded(r);
+  }
+  EXPECT_EQ(differ, 0u);
 }
 
 }  // namespace

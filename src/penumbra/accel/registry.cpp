@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "penumbra/accel/auto_width_bvh.h"
 #include "penumbra/accel/brute_force.h"
 #include "penumbra/accel/bsp_tree.h"
 #include "penumbra/accel/bvh.h"
@@ -25,17 +26,29 @@ std::unique_ptr<Accelerator> create(const ParamList& p) {
   return std::make_unique<T>(p);
 }
 
-/// `bvh`: the BVH of the chosen width (8 by default: measured fastest, docs/accel.md).
-/// nodes=full|compressed chooses the 8-wide node layout (docs/accel.md).
+/// `bvh`: the BVH of the chosen width (auto by default: 8, or 16 for large sets on AVX-512
+/// targets, auto_width_bvh.h; measured in docs/accel.md). nodes=compressed and order=octant
+/// exist for width 8 only, which they imply when no width is given.
 std::unique_ptr<Accelerator> create_bvh(const ParamList& p) {
-  const int width = int(p.get_int("width", 8, 2, 8));
   const std::string nodes = p.get_string("nodes", "full");
   if (nodes != "full" && nodes != "compressed")
     throw Error(
         fmt::format("{}: parameter 'nodes' must be full or compressed, got '{}'", p.name(), nodes));
+  const std::string w = p.get_string("width", "auto");
+  int width = 0;  // auto
+  if (w != "auto") {
+    width = int(p.get_int("width", 8, 2, 16));
+    if (width != 2 && width != 4 && width != 8 && width != 16)
+      throw Error(fmt::format("{}: parameter 'width' must be auto, 2, 4, 8 or 16, got {}", p.name(),
+                              width));
+  }
+  if (width == 0 && (nodes == "compressed" || p.get_string("order", "distance") == "octant"))
+    width = 8;
   if (nodes == "compressed" && width != 8)
     throw Error(fmt::format("{}: nodes=compressed needs width=8, got width={}", p.name(), width));
   switch (width) {
+    case 0:
+      return std::make_unique<AutoWidthBvh>(p);
     case 2:
       return std::make_unique<Bvh>(p);
     case 4:
@@ -44,7 +57,7 @@ std::unique_ptr<Accelerator> create_bvh(const ParamList& p) {
       if (nodes == "compressed") return std::make_unique<WideBvh<8, CompressedNode>>(p);
       return std::make_unique<WideBvh<8>>(p);
     default:
-      throw Error("bvh: width must be 2, 4 or 8");
+      return std::make_unique<WideBvh<16>>(p);
   }
 }
 
@@ -71,6 +84,8 @@ const Registry<Factory>& registry() {
       {"bvh:sweep", "bvh built by full-sweep SAH over all object partitions (build=sweep)",
        create_bvh},
       {"bvh:nodes=compressed", "bvh with 128-byte nodes, child boxes quantised to bytes",
+       create_bvh},
+      {"bvh:width=16", "bvh with 16-wide nodes whatever the set's size (one AVX-512 box test)",
        create_bvh},
       {"bvh:collapse=greedy",
        "bvh collapsed from the binary tree greedily (largest-area child opened first)",

@@ -111,4 +111,33 @@ struct FloatW<8> {
 };
 #endif
 
+#if defined(__AVX512F__)
+/// Sixteen lanes in an AVX-512 register (the 16-wide BVH).
+template <>
+struct FloatW<16> {
+  __m512 v;
+  static FloatW load(const float* p) { return {_mm512_load_ps(p)}; }
+  static FloatW broadcast(float x) { return {_mm512_set1_ps(x)}; }
+  static FloatW from_u8(const uint8_t* p) {
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
+    return {_mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(bytes))};
+  }
+  friend FloatW operator+(FloatW a, FloatW b) { return {_mm512_add_ps(a.v, b.v)}; }
+  friend FloatW operator-(FloatW a, FloatW b) { return {_mm512_sub_ps(a.v, b.v)}; }
+  friend FloatW operator*(FloatW a, FloatW b) { return {_mm512_mul_ps(a.v, b.v)}; }
+  // Zero-masked with every lane selected: the same instruction, without the undefined source
+  // operand of _mm512_max_ps, which GCC 12 warns is maybe uninitialised.
+  friend FloatW max(FloatW a, FloatW b) {
+    return {_mm512_maskz_max_ps(__mmask16(0xffff), a.v, b.v)};
+  }
+  friend FloatW min(FloatW a, FloatW b) {
+    return {_mm512_maskz_min_ps(__mmask16(0xffff), a.v, b.v)};
+  }
+  friend unsigned mask_le(FloatW a, FloatW b) {
+    return unsigned(_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ));
+  }
+  void store(float* p) const { _mm512_store_ps(p, v); }
+};
+#endif
+
 }  // namespace penumbra

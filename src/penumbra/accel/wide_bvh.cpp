@@ -235,7 +235,7 @@ int any_hit_first(unsigned mask, unsigned leaves, FloatW<W> near, FloatW<W> far,
   if (leaves) return std::countr_zero(leaves);
   int first = std::countr_zero(mask);
   if (span_order && (mask & (mask - 1))) {
-    alignas(32) float span[W];
+    alignas(4 * W) float span[W];
     (far - near).store(span);
     for (unsigned m = mask & (mask - 1); m; m &= m - 1) {
       const int i = std::countr_zero(m);
@@ -526,7 +526,7 @@ template <bool kAnyHit, bool kTriangles>
         for (unsigned m = mask & leaves; m; m &= m - 1) defer(std::countr_zero(m), 0.0f);
         return go(n.child[i0], n.count[i0]);
       }
-      alignas(32) float dist[W];
+      alignas(4 * W) float dist[W];
       near.store(dist);
       const int i0 = std::countr_zero(mask);
       mask &= mask - 1;
@@ -646,7 +646,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
         child = n.child[i0], count = n.count[i0];
         continue;
       }
-      alignas(32) float dist[W];
+      alignas(4 * W) float dist[W];
       near.store(dist);
       const int i0 = std::countr_zero(mask);
       mask &= mask - 1;
@@ -871,5 +871,6 @@ bool WideBvh<W, Node>::occluded(const Ray& ray) const {
 template class WideBvh<4>;
 template class WideBvh<8>;
 template class WideBvh<8, CompressedNode>;
+template class WideBvh<16>;
 
 }  // namespace penumbra

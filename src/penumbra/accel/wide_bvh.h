@@ -1,10 +1,11 @@
 #pragma once
-/// `bvh` (width 8, the default) and `bvh4`: wide BVHs with 4 or 8 children per node, made by
-/// collapsing the binary binned-SAH BVH (Dammertz, Hanika, Keller 2008, "Shallow Bounding Volume
-/// Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays"; Wald, Benthin, Boulos 2008, "Getting
-/// Rid of Packets"). A node holds its children's boxes in structure-of-arrays form, so one SIMD
-/// slab test covers all of them (SSE for 4, AVX for 8); a ray reaches a leaf in half (a third) of
-/// the binary tree's dependent node fetches. Children are visited nearest first.
+/// `bvh` (width 8, or 16 for large sets: auto_width_bvh.h) and `bvh4`: wide BVHs with 4, 8 or 16
+/// children per node, made by collapsing the binary binned-SAH BVH (Dammertz, Hanika, Keller 2008,
+/// "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays"; Wald,
+/// Benthin, Boulos 2008, "Getting Rid of Packets"). A node holds its children's boxes in
+/// structure-of-arrays form, so one SIMD slab test covers all of them (SSE for 4, AVX for 8,
+/// AVX-512 for 16); a ray reaches a leaf in half (a third, a quarter) of the binary tree's
+/// dependent node fetches. Children are visited nearest first.
 ///
 /// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
 /// collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h, the default, or
@@ -34,7 +35,7 @@ namespace penumbra {
 template <int W>
 struct WideBoxRay;
 
-/// Wide BVH of width W (4 or 8) with nodes of type Node (WideNode<W>, or CompressedNode for 8).
+/// Wide BVH of width W (4, 8 or 16) with nodes of type Node (WideNode<W>, or CompressedNode for 8).
 template <int W, class Node = WideNode<W>>
 class WideBvh final : public Accelerator {
  public:
@@ -116,5 +117,6 @@ class WideBvh final : public Accelerator {
 extern template class WideBvh<4>;
 extern template class WideBvh<8>;
 extern template class WideBvh<8, CompressedNode>;
+extern template class WideBvh<16>;
 
 }  // namespace penumbra

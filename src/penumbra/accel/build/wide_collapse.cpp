@@ -11,7 +11,7 @@ namespace penumbra {
 
 SahCollapse::SahCollapse(const BvhNodeArray& bin, int width, float node_cost, int block_shift)
     : bin_(bin), width_(width), block_shift_(block_shift), node_cost_(node_cost) {
-  if (width < 2 || width > kMaxWidth) throw Error("SahCollapse: width must be in 2..8");
+  if (width < 2 || width > kMaxWidth) throw Error("SahCollapse: width must be in 2..16");
   if (bin.empty() || bin[0].is_leaf()) return;
   dense_.resize(bin.size());
   // Number the reachable nodes (depth first), so the table holds only those.
@@ -54,7 +54,7 @@ void SahCollapse::plan(uint32_t b, int parallel_depth) {
   for (int i = 2; i <= width_; ++i) {
     const float c = distribute(b, i, k);
     if (c < cost_[r + i - 2]) {
-      cost_[r + i - 1] = c, choice_[r + i - 1] = uint8_t(k | i << 4);
+      cost_[r + i - 1] = c, choice_[r + i - 1] = uint8_t(k | (i - 1) << 4);
     } else {  // fewer slots are as cheap
       cost_[r + i - 1] = cost_[r + i - 2], choice_[r + i - 1] = choice_[r + i - 2];
     }
@@ -63,7 +63,7 @@ void SahCollapse::plan(uint32_t b, int parallel_depth) {
 
 void SahCollapse::expand(uint32_t b, int i, uint32_t* kids, int& n) const {
   const uint8_t c = choice_[row(b) + i - 1];
-  const int split = c & 15, used = c >> 4;
+  const int split = c & 15, used = (c >> 4) + 1;
   if (split == 0) {
     kids[n++] = b;
     return;

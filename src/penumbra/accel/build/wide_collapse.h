@@ -15,9 +15,9 @@ namespace penumbra {
 /// (⌈count / 2^block_shift⌉ blocks); the total is divided by the root's area.
 class SahCollapse {
  public:
-  static constexpr int kMaxWidth = 8;
+  static constexpr int kMaxWidth = 16;
 
-  /// Plans the collapse of `bin` (root at 0, an inner node) into nodes of at most `width` (2..8)
+  /// Plans the collapse of `bin` (root at 0, an inner node) into nodes of at most `width` (2..16)
   /// children.
   SahCollapse(const BvhNodeArray& bin, int width, float node_cost, int block_shift);
 
@@ -56,7 +56,7 @@ class SahCollapse {
   /// cost_[row + i - 1]: the least cost of the subtree as at most i slots of a wide node (i in
   /// 1..width). choice_ says how: low nibble `split` = 0 for one slot (the node itself: a leaf,
   /// or an inner node that becomes a wide node), else the left child takes `split` of `used`
-  /// (high nibble) slots and the right one the rest.
+  /// (high nibble: used - 1, so that 16 fits) slots and the right one the rest.
   Table<float> cost_;
   Table<uint8_t> choice_;
   float root_cost_ = 0;
