@@ -249,7 +249,9 @@ int any_hit_first(unsigned mask, unsigned leaves, FloatW<W> near, FloatW<W> far,
 
 template <int W, class Node>
 WideBvh<W, Node>::WideBvh(const ParamList& params) {
-  params_ = read_bvh_build_params(params);
+  // Leaves of up to 16 triangles (two eight-lane tests) in the 16-wide tree, which serves the
+  // sets larger than the caches: fewer nodes and levels, each a miss (docs/accel.md).
+  params_ = read_bvh_build_params(params, W == 16 ? 16 : 8);
   const std::string collapse = params.get_string("collapse", "sah");
   if (collapse != "greedy" && collapse != "sah")
     throw Error(fmt::format("{}: parameter 'collapse' must be greedy or sah, got '{}'",

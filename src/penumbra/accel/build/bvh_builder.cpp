@@ -291,7 +291,7 @@ BvhNodeArray compact(const BvhNode* scratch, size_t leaves) {
 
 }  // namespace
 
-BvhBuildParams read_bvh_build_params(const ParamList& params) {
+BvhBuildParams read_bvh_build_params(const ParamList& params, int default_leaf) {
   BvhBuildParams p;
   // build=METHOD, or the bare method name as a shorthand (as kdtree:sah).
   std::string method = params.get_string("build", "");
@@ -312,7 +312,7 @@ BvhBuildParams read_bvh_build_params(const ParamList& params) {
   else if (!method.empty() && method != "binned")
     throw Error(fmt::format("{}: parameter 'build' must be binned, median or sweep, got '{}'",
                             params.name(), method));
-  p.max_leaf = int(params.get_int("leaf", p.max_leaf, 1, 64));
+  p.max_leaf = int(params.get_int("leaf", default_leaf, 1, 64));
   // Reject what the method would ignore rather than silently measuring something else.
   if (p.method != BvhSplitMethod::kBinned && params.has("bins"))
     throw Error(fmt::format("{}: parameter 'bins' applies only to build=binned", params.name()));

@@ -42,8 +42,9 @@ struct BvhBuildParams {
 
 /// Reads build=binned|median|sweep (or the bare word), leaf=N (1..64), bins=N (2..kMaxBins, binned
 /// only) and trav=X (0..100, not for median) from `params`, the defaults being those of
-/// BvhBuildParams; throws Error on bad values. Unused keys are left for the caller.
-BvhBuildParams read_bvh_build_params(const ParamList& params);
+/// BvhBuildParams but for leaf's, `default_leaf`; throws Error on bad values. Unused keys are left
+/// for the caller.
+BvhBuildParams read_bvh_build_params(const ParamList& params, int default_leaf = 8);
 
 /// A built binary BVH. nodes[0] is the root and nodes[1] is padding, so that every pair of
 /// children starts at an even index (one cache line); children always follow their parent;
