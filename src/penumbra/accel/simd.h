@@ -1,6 +1,7 @@
 #pragma once
-/// A minimal vector of W floats for the wide BVH: SSE for W = 4, AVX for W = 8, plain arrays
-/// otherwise. Only what the box tests need: load, broadcast, arithmetic, min/max, compare.
+/// A minimal vector of W floats for the wide BVH: SSE for W = 4, AVX for W = 8 (and 16, as two
+/// registers), plain arrays otherwise. Only what the box tests need: load, broadcast, arithmetic,
+/// min/max, compare.
 #include <cstdint>
 
 #if defined(__SSE2__)
@@ -111,32 +112,38 @@ struct FloatW<8> {
 };
 #endif
 
-#if defined(__AVX512F__)
-/// Sixteen lanes in an AVX-512 register (the 16-wide BVH).
+#if defined(__AVX__)
+/// Sixteen lanes as two AVX registers (the 16-wide BVH), also where AVX-512 is available: with
+/// one 512-bit register per row the Intel Xeon measured ran every ray set 2-6 % slower (its
+/// 512-bit arithmetic lowers the core's clock; docs/accel.md, "2026-12-06, twelfth session").
 template <>
 struct FloatW<16> {
-  __m512 v;
-  static FloatW load(const float* p) { return {_mm512_load_ps(p)}; }
-  static FloatW broadcast(float x) { return {_mm512_set1_ps(x)}; }
-  static FloatW from_u8(const uint8_t* p) {
-    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-    return {_mm512_cvtepi32_ps(_mm512_cvtepu8_epi32(bytes))};
+  __m256 lo, hi;  ///< lanes 0-7 and 8-15
+  static FloatW load(const float* p) { return {_mm256_load_ps(p), _mm256_load_ps(p + 8)}; }
+  static FloatW broadcast(float x) { return {_mm256_set1_ps(x), _mm256_set1_ps(x)}; }
+  friend FloatW operator+(FloatW a, FloatW b) {
+    return {_mm256_add_ps(a.lo, b.lo), _mm256_add_ps(a.hi, b.hi)};
   }
-  friend FloatW operator+(FloatW a, FloatW b) { return {_mm512_add_ps(a.v, b.v)}; }
-  friend FloatW operator-(FloatW a, FloatW b) { return {_mm512_sub_ps(a.v, b.v)}; }
-  friend FloatW operator*(FloatW a, FloatW b) { return {_mm512_mul_ps(a.v, b.v)}; }
-  // Zero-masked with every lane selected: the same instruction, without the undefined source
-  // operand of _mm512_max_ps, which GCC 12 warns is maybe uninitialised.
+  friend FloatW operator-(FloatW a, FloatW b) {
+    return {_mm256_sub_ps(a.lo, b.lo), _mm256_sub_ps(a.hi, b.hi)};
+  }
+  friend FloatW operator*(FloatW a, FloatW b) {
+    return {_mm256_mul_ps(a.lo, b.lo), _mm256_mul_ps(a.hi, b.hi)};
+  }
   friend FloatW max(FloatW a, FloatW b) {
-    return {_mm512_maskz_max_ps(__mmask16(0xffff), a.v, b.v)};
+    return {_mm256_max_ps(a.lo, b.lo), _mm256_max_ps(a.hi, b.hi)};
   }
   friend FloatW min(FloatW a, FloatW b) {
-    return {_mm512_maskz_min_ps(__mmask16(0xffff), a.v, b.v)};
+    return {_mm256_min_ps(a.lo, b.lo), _mm256_min_ps(a.hi, b.hi)};
   }
   friend unsigned mask_le(FloatW a, FloatW b) {
-    return unsigned(_mm512_cmp_ps_mask(a.v, b.v, _CMP_LE_OQ));
+    return unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.lo, b.lo, _CMP_LE_OQ))) |
+           unsigned(_mm256_movemask_ps(_mm256_cmp_ps(a.hi, b.hi, _CMP_LE_OQ))) << 8;
   }
-  void store(float* p) const { _mm512_store_ps(p, v); }
+  void store(float* p) const {
+    _mm256_store_ps(p, lo);
+    _mm256_store_ps(p + 8, hi);
+  }
 };
 #endif
 
