@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "penumbra/accel/auto_width_bvh.h"
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/build/bvh_split.h"
@@ -152,7 +151,6 @@ TEST(Bvh, ParametersAreReadAndChecked) {
   EXPECT_THROW(make_accelerator("bvh:width=wide"), Error);
   EXPECT_EQ(make_accelerator("bvh:width=2")->name(), "bvh:width=2");
   EXPECT_EQ(make_accelerator("bvh:width=16")->name(), "bvh:width=16");
-  EXPECT_EQ(make_accelerator("bvh:width=auto")->name(), "bvh:width=auto");
   // The compressed nodes and the octant order exist for width 8, which they imply.
   EXPECT_NO_THROW(make_accelerator("bvh:nodes=compressed"));
   EXPECT_NO_THROW(make_accelerator("bvh:order=octant"));
@@ -490,54 +488,34 @@ TEST(WideBvh, DistanceOrderVisitsTwoToSixteenChildrenNearestFirst) {
   }
 }
 
-// width=auto (the default) takes 16-wide nodes above 2^17 primitives where the target has
-// AVX-512, 8-wide ones below, and reports which; its answers are those of the explicit widths
-// bit for bit, and a rebuild over a small set after a large one goes back to 8 (and the other way).
-TEST(AutoWidthBvh, ChoosesByTheSetsSizeAndAnswersAsTheExplicitWidths) {
+// `bvh` without a width is 16-wide where the build targets AVX-512 and 8-wide elsewhere, with
+// leaves of up to 16 and 8 triangles; the compressed nodes and the octant order imply 8.
+TEST(Bvh, DefaultWidthFollowsTheTarget) {
 #if defined(__AVX512F__)
-  const int large_width = 16;
+  EXPECT_NE(dynamic_cast<const WideBvh<16>*>(make_accelerator("bvh").get()), nullptr);
 #else
-  const int large_width = 8;
+  EXPECT_NE(dynamic_cast<const WideBvh<8>*>(make_accelerator("bvh").get()), nullptr);
 #endif
-  EXPECT_EQ(AutoWidthBvh::width_for(AutoWidthBvh::kWide16Above), 8);
-  EXPECT_EQ(AutoWidthBvh::width_for(AutoWidthBvh::kWide16Above + 1), large_width);
-  const TestScene large = torus(400, 250);  // 200,000 triangles
-  const TestScene small = torus(40, 30);
-  ASSERT_GT(large.prims.size(), AutoWidthBvh::kWide16Above);
-  const auto width_stat = [](const Accelerator& a) {
-    for (const auto& [key, value] : a.stats().extra)
-      if (key == "width") return value;
-    return 0.0;
-  };
-  auto bvh = make_accelerator("bvh");
-  ASSERT_NE(dynamic_cast<const AutoWidthBvh*>(bvh.get()), nullptr);
-  for (const TestScene* scene : {&large, &small, &large}) {
-    bvh->build(scene->prims);
-    const int width = scene == &small ? 8 : large_width;
-    EXPECT_EQ(width_stat(*bvh), double(width)) << scene->name;
-    auto same = make_accelerator(width == 16 ? "bvh:width=16" : "bvh:width=8");
-    same->build(scene->prims);
-    EXPECT_EQ(bvh->stats().nodes, same->stats().nodes) << scene->name;
-    EXPECT_EQ(bvh->stats().bytes, same->stats().bytes) << scene->name;
-    const std::vector<Ray> rays = mixed_rays(scene->prims, 5000, 11);
-    std::vector<Hit> batch(rays.size()), batch_same(rays.size());
-    bvh->intersect_batch(rays, batch, BatchOrder::kIncoherent);
-    same->intersect_batch(rays, batch_same, BatchOrder::kIncoherent);
-    size_t hits = 0;
-    for (size_t i = 0; i < rays.size(); ++i) {
-      Hit a, b;
-      const bool ha = bvh->intersect(rays[i], a), hb = same->intersect(rays[i], b);
-      ASSERT_EQ(ha, hb) << scene->name << " ray " << i;
-      hits += ha;
-      if (ha) {
-        ASSERT_EQ(a.t, b.t) << scene->name << " ray " << i;
-        ASSERT_EQ(a.prim, b.prim) << scene->name << " ray " << i;
-        ASSERT_EQ(batch[i].t, b.t) << scene->name << " ray " << i;
-      }
-      ASSERT_EQ(bvh->occluded(rays[i]), same->occluded(rays[i])) << scene->name << " ray " << i;
-    }
-    EXPECT_GT(hits, rays.size() / 10) << scene->name;
+  EXPECT_NE(dynamic_cast<const WideBvh<8>*>(make_accelerator("bvh:order=octant").get()), nullptr);
+  using Compressed = WideBvh<8, CompressedNode>;
+  EXPECT_NE(dynamic_cast<const Compressed*>(make_accelerator("bvh:nodes=compressed").get()),
+            nullptr);
+  // Leaves: 16 triangles in one leaf of the 16-wide tree, at most 8 in the 8-wide one's.
+  TriangleMesh m;
+  for (int i = 0; i < 16; ++i) {
+    const auto base = static_cast<uint32_t>(m.positions.size());
+    const float x = float(i) * 1e-3f;
+    m.positions.insert(m.positions.end(), {{x, 0, 0}, {x, 1, 0}, {x, 0, 1}});
+    m.indices.insert(m.indices.end(), {base, base + 1, base + 2});
   }
+  PrimitiveSet prims;
+  prims.add_mesh(m, Transform(), 0);
+  auto wide = make_accelerator("bvh:width=16,trav=100");
+  auto narrow = make_accelerator("bvh:width=8,trav=100");
+  wide->build(prims);
+  narrow->build(prims);
+  EXPECT_EQ(wide->stats().leaves, 1u);
+  EXPECT_EQ(narrow->stats().leaves, 2u);
 }
 
 // The 16-wide tree answers as brute force on a set large enough for several levels of 16-wide

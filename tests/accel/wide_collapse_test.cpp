@@ -9,7 +9,6 @@
 #include <limits>
 #include <vector>
 
-#include "penumbra/accel/auto_width_bvh.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/build/wide_collapse.h"
 #include "penumbra/accel/registry.h"
@@ -123,8 +122,6 @@ std::vector<unsigned char> bytes_of(const WideBvh<W>& bvh) {
   return {p, p + nodes.size_bytes()};
 }
 std::vector<unsigned char> node_bytes(const Accelerator& accel) {
-  if (const auto* a = dynamic_cast<const AutoWidthBvh*>(&accel))
-    return a->width() == 16 ? bytes_of(a->wider()) : bytes_of(a->narrow());
   if (const auto* w = dynamic_cast<const WideBvh<16>*>(&accel)) return bytes_of(*w);
   if (const auto* w = dynamic_cast<const WideBvh<8>*>(&accel)) return bytes_of(*w);
   if (const auto* w = dynamic_cast<const WideBvh<4>*>(&accel)) return bytes_of(*w);
@@ -135,7 +132,6 @@ std::vector<unsigned char> node_bytes(const Accelerator& accel) {
 // must be the same bytes at every thread count.
 TEST(SahCollapse, SameWideTreeForEveryThreadCount) {
   const TestScene s = torus(400, 250);
-  // Over 2^17 triangles: `bvh` is 16-wide where the target has AVX-512, 8-wide elsewhere.
   for (const char* spec : {"bvh", "bvh:collapse=greedy", "bvh4", "bvh:width=8", "bvh:width=16"}) {
     std::vector<unsigned char> reference;
     for (int threads : {1, 2, 3, 8}) {

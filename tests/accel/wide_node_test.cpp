@@ -107,7 +107,7 @@ TEST(CompressedNode, EmptySlotsAreNotValid) {
 
 TEST(CompressedNode, HalvesTheNodeMemoryAndKeepsTheTree) {
   const PrimitiveSet prims = random_soup(20000, 5).prims;
-  auto full = make_accelerator("bvh");
+  auto full = make_accelerator("bvh:width=8");  // the same tree as the compressed nodes'
   auto compressed = make_accelerator("bvh:nodes=compressed");
   full->build(prims);
   compressed->build(prims);

@@ -4,7 +4,6 @@
 
 #include <fmt/format.h>
 
-#include "penumbra/accel/auto_width_bvh.h"
 #include "penumbra/accel/brute_force.h"
 #include "penumbra/accel/bsp_tree.h"
 #include "penumbra/accel/bvh.h"
@@ -26,29 +25,35 @@ std::unique_ptr<Accelerator> create(const ParamList& p) {
   return std::make_unique<T>(p);
 }
 
-/// `bvh`: the BVH of the chosen width (auto by default: 8, or 16 for large sets on AVX-512
-/// targets, auto_width_bvh.h; measured in docs/accel.md). nodes=compressed and order=octant
+/// The width of `bvh` when none is given: 16 where the build targets AVX-512 (faster there than 8
+/// on every mesh and ray set measured but the small meshes' camera rays, docs/accel.md,
+/// "2026-12-06, twelfth session"), 8 elsewhere (not measured with 16).
+int default_bvh_width() {
+#if defined(__AVX512F__)
+  return 16;
+#else
+  return 8;
+#endif
+}
+
+/// `bvh`: the BVH of the chosen width (default_bvh_width()). nodes=compressed and order=octant
 /// exist for width 8 only, which they imply when no width is given.
 std::unique_ptr<Accelerator> create_bvh(const ParamList& p) {
   const std::string nodes = p.get_string("nodes", "full");
   if (nodes != "full" && nodes != "compressed")
     throw Error(
         fmt::format("{}: parameter 'nodes' must be full or compressed, got '{}'", p.name(), nodes));
-  const std::string w = p.get_string("width", "auto");
-  int width = 0;  // auto
-  if (w != "auto") {
-    width = int(p.get_int("width", 8, 2, 16));
-    if (width != 2 && width != 4 && width != 8 && width != 16)
-      throw Error(fmt::format("{}: parameter 'width' must be auto, 2, 4, 8 or 16, got {}", p.name(),
-                              width));
-  }
-  if (width == 0 && (nodes == "compressed" || p.get_string("order", "distance") == "octant"))
-    width = 8;
+  int width = int(p.get_int("width", 0, 2, 16));  // 0: not given
+  if (width == 0)
+    width = nodes == "compressed" || p.get_string("order", "distance") == "octant"
+                ? 8
+                : default_bvh_width();
+  if (width != 2 && width != 4 && width != 8 && width != 16)
+    throw Error(
+        fmt::format("{}: parameter 'width' must be 2, 4, 8 or 16, got {}", p.name(), width));
   if (nodes == "compressed" && width != 8)
     throw Error(fmt::format("{}: nodes=compressed needs width=8, got width={}", p.name(), width));
   switch (width) {
-    case 0:
-      return std::make_unique<AutoWidthBvh>(p);
     case 2:
       return std::make_unique<Bvh>(p);
     case 4:
@@ -66,7 +71,8 @@ const Registry<Factory>& registry() {
   static const Registry<Factory> all = {
       {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
       {"bvh",
-       "BVH, binned SAH build, width=8 (SIMD 8-wide nodes; 4, or 2 for binary), leaf=8, bins=16, "
+       "BVH, binned SAH build, width=16 on AVX-512 targets, else 8 (SIMD wide nodes; 4, or 2 "
+       "for binary), leaf=16 for width 16, else 8, bins=16, "
        "trav=2, build=binned|median|sweep, collapse=sah|greedy, nodes=full|compressed (8-wide: "
        "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
        "as extra references for large triangles, F in [0, 4]), spatial=1 (SBVH spatial splits: "
@@ -85,8 +91,9 @@ const Registry<Factory>& registry() {
        create_bvh},
       {"bvh:nodes=compressed", "bvh with 128-byte nodes, child boxes quantised to bytes",
        create_bvh},
-      {"bvh:width=16", "bvh with 16-wide nodes whatever the set's size (one AVX-512 box test)",
-       create_bvh},
+      // Both widths whatever the target's default (one of them is `bvh` itself).
+      {"bvh:width=8", "bvh with 8-wide nodes (256 bytes), leaves of up to 8", create_bvh},
+      {"bvh:width=16", "bvh with 16-wide nodes (512 bytes), leaves of up to 16", create_bvh},
       {"bvh:collapse=greedy",
        "bvh collapsed from the binary tree greedily (largest-area child opened first)",
        create_bvh},
