@@ -306,9 +306,11 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   const Timer timer;
   prims_ = &prims;
   // The binary tree is only walked once, to collapse it: no need to compact it first.
-  // Triangle leaves are tested four at a time (TriangleBlocks): let the SAH count blocks.
+  // Triangle leaves are tested four at a time (TriangleBlocks): let the SAH count blocks. The
+  // 16-wide tree's leaves of up to 16 are tested as pairs of blocks (eight lanes): let it count
+  // pairs there (2-5 % faster on the large meshes, within ±3 % on the small ones; docs/accel.md).
   BvhBuildParams params = params_;
-  if (prims.all_triangles()) params.block_shift = 2;
+  if (prims.all_triangles()) params.block_shift = W == 16 ? 3 : 2;
   // Spatial splits clip triangles, so only sets of static triangles get them; their room is
   // reserved with the references (growing the array would copy it).
   if (!prims.all_triangles()) params.spatial_budget = 0.0f;
