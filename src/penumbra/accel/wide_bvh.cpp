@@ -249,8 +249,8 @@ int any_hit_first(unsigned mask, unsigned leaves, FloatW<W> near, FloatW<W> far,
 
 template <int W, class Node>
 WideBvh<W, Node>::WideBvh(const ParamList& params) {
-  // Leaves of up to 16 triangles (two eight-lane tests) in the 16-wide tree, which serves the
-  // sets larger than the caches: fewer nodes and levels, each a miss (docs/accel.md).
+  // Leaves of up to 16 triangles (two eight-lane tests) in the 16-wide tree: fewer nodes and
+  // levels for a few more triangles tested (docs/accel.md, "2026-12-06, twelfth session").
   params_ = read_bvh_build_params(params, W == 16 ? 16 : 8);
   const std::string collapse = params.get_string("collapse", "sah");
   if (collapse != "greedy" && collapse != "sah")

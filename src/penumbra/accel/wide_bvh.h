@@ -1,16 +1,17 @@
 #pragma once
-/// `bvh` (width 8, or 16 for large sets: auto_width_bvh.h) and `bvh4`: wide BVHs with 4, 8 or 16
-/// children per node, made by collapsing the binary binned-SAH BVH (Dammertz, Hanika, Keller 2008,
-/// "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent Rays"; Wald,
-/// Benthin, Boulos 2008, "Getting Rid of Packets"). A node holds its children's boxes in
-/// structure-of-arrays form, so one SIMD slab test covers all of them (SSE for 4, AVX for 8,
-/// AVX-512 for 16); a ray reaches a leaf in half (a third, a quarter) of the binary tree's
-/// dependent node fetches. Children are visited nearest first.
+/// `bvh` (16-wide on AVX-512 targets, 8-wide elsewhere: registry.cpp) and `bvh4`: wide BVHs with
+/// 4, 8 or 16 children per node, made by collapsing the binary binned-SAH BVH (Dammertz, Hanika,
+/// Keller 2008, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent
+/// Rays"; Wald, Benthin, Boulos 2008, "Getting Rid of Packets"; Fuetterling et al. 2017,
+/// "Accelerated Single Ray Tracing for Wide Vector Units", for 16). A node holds its children's
+/// boxes in structure-of-arrays form, so one SIMD slab test covers all of them (SSE for 4, AVX
+/// for 8, two AVX registers for 16); a ray reaches a leaf in half (a third, a quarter) of the
+/// binary tree's dependent node fetches. Children are visited nearest first.
 ///
-/// Parameters: the binary build's leaf=N (default 8), bins=N (default 16), trav=X (default 2);
-/// collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h, the default, or
-/// largest-area opening); optimize=N|auto (passes of treelet restructuring over the binary
-/// tree before the collapse, build/treelet_opt.h; auto, the default: one for sets of up to
+/// Parameters: the binary build's leaf=N (default 8; 16 for width 16), bins=N (default 16),
+/// trav=X (default 2); collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h,
+/// the default, or largest-area opening); optimize=N|auto (passes of treelet restructuring over the
+/// binary tree before the collapse, build/treelet_opt.h; auto, the default: one for sets of up to
 /// 2^18 primitives, none above); interleave=auto|on|off (whether batch queries,
 /// intersect_batch and occluded_batch, alternate between 8 rays' traversals a node at a time,
 /// so that each ray's next node loads while the others work; auto: when the structure exceeds
