@@ -370,7 +370,7 @@ TEST(WideBvh, OctantOrderMeetsTheNearChildFirstOnTheDiagonals) {
   }
   PrimitiveSet prims;
   prims.add_mesh(m, Transform(), 0);
-  auto nearest = make_accelerator("bvh");
+  auto nearest = make_accelerator("bvh:width=8");  // the octant order's width
   auto octant = make_accelerator("bvh:order=octant");
   nearest->build(prims);
   octant->build(prims);
