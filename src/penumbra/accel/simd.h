@@ -114,8 +114,9 @@ struct FloatW<8> {
 
 #if defined(__AVX__)
 /// Sixteen lanes as two AVX registers (the 16-wide BVH), also where AVX-512 is available: with
-/// one 512-bit register per row the Intel Xeon measured ran every ray set 2-6 % slower (its
-/// 512-bit arithmetic lowers the core's clock; docs/accel.md, "2026-12-06, twelfth session").
+/// one 512-bit register per row the Intel Xeon measured ran every ray set 2-6 % slower (most
+/// likely as 512-bit arithmetic lowers the core's clock; docs/accel.md, "2026-12-06, twelfth
+/// session").
 template <>
 struct FloatW<16> {
   __m256 lo, hi;  ///< lanes 0-7 and 8-15
