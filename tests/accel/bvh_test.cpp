@@ -516,6 +516,9 @@ TEST(Bvh, DefaultWidthFollowsTheTarget) {
   narrow->build(prims);
   EXPECT_EQ(wide->stats().leaves, 1u);
   EXPECT_EQ(narrow->stats().leaves, 2u);
+  // The width is reported with the other figures (accel-bench prints it).
+  EXPECT_EQ(extra_stat(*wide, "width"), 16.0);
+  EXPECT_EQ(extra_stat(*narrow, "width"), 8.0);
 }
 
 // The 16-wide tree answers as brute force on a set large enough for several levels of 16-wide

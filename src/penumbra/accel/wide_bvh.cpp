@@ -410,7 +410,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   stats_.max_depth = best.max_depth;
   stats_.prim_refs = leaf_refs;
   stats_.bytes = nodes_.capacity() * sizeof(Node) + leaf_.bytes() + blocks_.bytes();
-  stats_.extra = {{"sah_cost", sah_cost}};
+  stats_.extra = {{"width", double(W)}, {"sah_cost", sah_cost}};
   interleave_ = interleave_mode_ < 0 ? stats_.bytes > kInterleaveBytes : interleave_mode_ == 1;
   stats_.extra.emplace_back("interleaved batches", double(interleave_));
   if (best.optimized) {
