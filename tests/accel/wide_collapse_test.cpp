@@ -132,7 +132,8 @@ std::vector<unsigned char> node_bytes(const Accelerator& accel) {
 // must be the same bytes at every thread count.
 TEST(SahCollapse, SameWideTreeForEveryThreadCount) {
   const TestScene s = torus(400, 250);
-  for (const char* spec : {"bvh", "bvh:collapse=greedy", "bvh4", "bvh:width=8", "bvh:width=16"}) {
+  // `bvh` is one of the two explicit widths (which, by target), so it is not built a third time.
+  for (const char* spec : {"bvh:width=8", "bvh:width=16", "bvh:collapse=greedy", "bvh4"}) {
     std::vector<unsigned char> reference;
     for (int threads : {1, 2, 3, 8}) {
       const ThreadLimit limit(threads);
