@@ -20,24 +20,33 @@
 namespace penumbra::test {
 namespace {
 
-BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf) {
+BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf, int block_shift = 2) {
   BvhBuildParams p;
   p.max_leaf = max_leaf;
-  p.block_shift = 2;
+  p.block_shift = block_shift;
   return build_binary_bvh(make_prim_refs(prims), p);
 }
 
 /// The least SAH cost (unnormalised) of binary node b's subtree as at most `slots` slots of a
 /// wide node, by enumerating every way to cut the binary tree (exponential: small trees only).
-/// Independent of SahCollapse's table: it recurses on sets of slots, not on counts.
-double best_cost(const BvhNodeArray& bin, uint32_t b, int slots, int width, float node_cost) {
+/// Independent of SahCollapse's table: it recurses on sets of slots, not on counts. With
+/// `max_leaf` > 0, an inner node of at most that many references may also be one leaf.
+uint32_t subtree_refs(const BvhNodeArray& bin, uint32_t b) {
+  return bin[b].is_leaf() ? bin[b].count
+                          : subtree_refs(bin, bin[b].index) + subtree_refs(bin, bin[b].index + 1);
+}
+double best_cost(const BvhNodeArray& bin, uint32_t b, int slots, int width, float node_cost,
+                 uint32_t max_leaf = 0) {
   const BvhNode& n = bin[b];
   const double area = n.bounds().surface_area();
   if (n.is_leaf()) return area * double((n.count + 3) / 4);
+  const uint32_t refs = subtree_refs(bin, b);
+  const double as_leaf = max_leaf > 0 && refs <= max_leaf ? area * double((refs + 3) / 4)
+                                                          : std::numeric_limits<double>::infinity();
   // As one slot, b is a wide node whose children are a cut of its subtree into <= width slots.
   std::function<double(uint32_t, int)> cut = [&](uint32_t c, int k) -> double {
     // Cheapest cut of c's subtree into at most k slots (each slot a leaf or a wide node).
-    double best = best_cost(bin, c, 1, width, node_cost);  // c itself as a slot
+    double best = best_cost(bin, c, 1, width, node_cost, max_leaf);  // c itself as a slot
     if (!bin[c].is_leaf() && k >= 2)
       for (int left = 1; left < k; ++left)
         best = std::min(best, cut(bin[c].index, left) + cut(bin[c].index + 1, k - left));
@@ -47,7 +56,7 @@ double best_cost(const BvhNodeArray& bin, uint32_t b, int slots, int width, floa
     double best = std::numeric_limits<double>::infinity();
     for (int left = 1; left < width; ++left)
       best = std::min(best, cut(n.index, left) + cut(n.index + 1, width - left));
-    return node_cost * area + best;
+    return std::min(as_leaf, node_cost * area + best);
   }
   return cut(b, slots);
 }
@@ -87,6 +96,39 @@ TEST(SahCollapse, FindsTheCheapestCollapseOfSmallTrees) {
           best_cost(tree.nodes, 0, 1, width, 2.0f) / tree.nodes[0].bounds().surface_area();
       EXPECT_NEAR(plan.cost(), exact, 1e-4 * exact) << "seed " << seed << " width " << width;
     }
+  }
+}
+
+// With leaves merged (the plan may make a small binary subtree one leaf), the plan's cost is still
+// the least by enumeration, and never above the cost without merging on the same binary tree.
+TEST(SahCollapse, FindsTheCheapestCollapseWithMergedLeaves) {
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    const PrimitiveSet prims = random_soup(24 + 4 * int(seed), seed).prims;
+    const BinaryBvh tree = binary_tree(prims, 1);
+    ASSERT_FALSE(tree.nodes[0].is_leaf());
+    for (int width : {2, 3, 4}) {
+      for (uint32_t max_leaf : {4u, 8u}) {
+        const SahCollapse plan(tree.nodes, width, 2.0f, 2, max_leaf);
+        const SahCollapse unmerged(tree.nodes, width, 2.0f, 2);
+        const double exact = best_cost(tree.nodes, 0, 1, width, 2.0f, max_leaf) /
+                             tree.nodes[0].bounds().surface_area();
+        EXPECT_NEAR(plan.cost(), exact, 1e-4 * exact) << "seed " << seed << " width " << width;
+        EXPECT_LE(plan.cost(), unmerged.cost() * (1 + 1e-6)) << "seed " << seed;
+      }
+    }
+  }
+}
+
+// The 16-wide structure with merged leaves reports the plan's cost for its binary tree.
+TEST(SahCollapse, MergedPlanCostIsTheBuiltTrees) {
+  for (const auto& scene : {random_soup(3000, 3), torus(40, 30), room_with_boxes(30, 4)}) {
+    auto merged = make_accelerator("bvh:spatial=0,optimize=0,width=16,binleaf=8");
+    merged->build(scene.prims);
+    const double s = extra_stat(*merged, "sah_cost");
+    const BinaryBvh tree = binary_tree(scene.prims, 8, 3);
+    const SahCollapse plan(tree.nodes, 16, 2.0f, 3, 16);
+    EXPECT_NEAR(plan.cost(), s, 1e-4 * s) << scene.name;
+    EXPECT_EQ(merged->stats().prim_refs, scene.prims.size()) << scene.name;
   }
 }
 
@@ -133,7 +175,8 @@ std::vector<unsigned char> node_bytes(const Accelerator& accel) {
 TEST(SahCollapse, SameWideTreeForEveryThreadCount) {
   const TestScene s = torus(400, 250);
   // `bvh` is one of the two explicit widths (which, by target), so it is not built a third time.
-  for (const char* spec : {"bvh:width=8", "bvh:width=16", "bvh:collapse=greedy", "bvh4"}) {
+  for (const char* spec :
+       {"bvh:width=8", "bvh:width=16", "bvh:width=16,binleaf=8", "bvh:collapse=greedy", "bvh4"}) {
     std::vector<unsigned char> reference;
     for (int threads : {1, 2, 3, 8}) {
       const ThreadLimit limit(threads);

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <bit>
 #include <optional>
+#include <span>
+#include <tuple>
 #include <utility>
 
 #include <fmt/format.h>
@@ -55,8 +57,8 @@ class Collapser {
   /// Collapses greedily, or as `plan` says when given; with `octant_slots`, children take the
   /// slots of the octant order (octant_slots()).
   Collapser(const BvhNodeArray& bin, WideNodeArray<W>& out, const SahCollapse* plan,
-            bool octant_slots = false)
-      : bin_(bin), out_(out), plan_(plan), octant_slots_(octant_slots) {}
+            bool octant_slots = false, PrimRefArray* refs = nullptr)
+      : bin_(bin), out_(out), plan_(plan), octant_slots_(octant_slots), refs_(refs) {}
 
   /// Emits the wide node for binary inner node `b`; returns its index.
   uint32_t emit(uint32_t b, size_t depth) {
@@ -69,8 +71,9 @@ class Collapser {
     if (octant_slots_) octant_slots(bin_[b].bounds(), kids, n, slot);
     for (int i = 0; i < n; ++i) {
       const BvhNode& k = bin_[kids[i]];
-      uint32_t child = k.index;
-      if (k.is_leaf()) {
+      uint32_t child = k.index, count = k.count;
+      if (k.is_leaf() || (plan_ && plan_->merged(kids[i]))) {
+        if (!k.is_leaf()) std::tie(child, count) = merge(kids[i]);
         ++leaves_;
         max_depth_ = std::max(max_depth_, depth + 1);
       } else {
@@ -79,7 +82,7 @@ class Collapser {
       WideNode<W>& node = out_[me];  // emit() may have reallocated
       for (int r = 0; r < 6; ++r) node.box[r][slot[i]] = k.box[r];
       node.child[slot[i]] = child;
-      node.count[slot[i]] = k.count;
+      node.count[slot[i]] = count;
     }
     return me;
   }
@@ -92,6 +95,13 @@ class Collapser {
     node.count[0] = leaf.count;
     out_.push_back(node);
     leaves_ = 1, max_depth_ = 1;
+  }
+
+  /// A root node holding one leaf of all the references (plan_->merged(0)).
+  void emit_merged_root() {
+    BvhNode leaf = bin_[0];
+    std::tie(leaf.index, leaf.count) = merge(0);
+    emit_leaf_root(leaf);
   }
 
   /// Leaves and depth of what was emitted.
@@ -149,6 +159,31 @@ class Collapser {
     }
   }
 
+  /// The references of binary inner node `b`'s leaves made one leaf, appended to the references
+  /// (treelet restructuring leaves a subtree's leaves anywhere in them), each primitive once
+  /// (spatial splits may have put parts of one in two of the leaves), in id order. Returns
+  /// (first, count).
+  std::pair<uint32_t, uint32_t> merge(uint32_t b) {
+    const auto first = static_cast<uint32_t>(refs_->size());
+    uint32_t stack[64];
+    int sp = 0;
+    stack[sp++] = b;
+    while (sp > 0) {
+      const BvhNode& n = bin_[stack[--sp]];
+      if (!n.is_leaf()) {
+        stack[sp++] = n.index, stack[sp++] = n.index + 1;
+        continue;
+      }
+      for (uint32_t i = n.index; i < n.index + n.count; ++i) refs_->push_back((*refs_)[i]);
+    }
+    const auto begin = refs_->begin() + first;
+    std::sort(begin, refs_->end(), [](const PrimRef& x, const PrimRef& y) { return x.id < y.id; });
+    refs_->erase(std::unique(begin, refs_->end(),
+                             [](const PrimRef& x, const PrimRef& y) { return x.id == y.id; }),
+                 refs_->end());
+    return {first, static_cast<uint32_t>(refs_->size() - first)};
+  }
+
   static WideNode<W> empty_node() {
     WideNode<W> n;
     for (int i = 0; i < W; ++i) {
@@ -162,6 +197,7 @@ class Collapser {
   WideNodeArray<W>& out_;
   const SahCollapse* plan_;
   bool octant_slots_;
+  PrimRefArray* refs_;  ///< the binary tree's references (merge() appends to them)
   size_t leaves_ = 0, max_depth_ = 0;
 };
 
@@ -190,6 +226,13 @@ double wide_sah_cost(const WideNodeArray<W>& nodes, float node_cost, int block_s
 
 /// optimize=auto restructures the treelets of sets of at most this many primitives (one pass).
 constexpr size_t kOptimizeBelow = size_t(1) << 18;
+
+/// binleaf=auto merges leaves in the collapse of the 16-wide tree over sets of at most this many
+/// primitives: small sets, whose tree stays in the caches, where the SAH's leaves are the faster
+/// (the bunny's and human_blend's bounce rays +5-13 %); above, fewer and larger leaves (the
+/// binary build's) are, as each node fetched is a cache miss (spheres-1m's incoherent rays -7 %
+/// with merging, and half as much build time again).
+constexpr size_t kMergeBelow = size_t(1) << 16;
 
 /// Sets of at most this many primitives are built with and without spatial splits, and the tree
 /// of lower wide SAH cost kept (a build of 4,096 triangles takes about a millisecond).
@@ -258,6 +301,11 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
                             params.name(), collapse));
   sah_collapse_ = collapse == "sah";
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
+  // binleaf=auto: 8 in the 16-wide tree over sets of up to kMergeBelow primitives, where the
+  // traversal waits on arithmetic more than on memory; no merging elsewhere.
+  bin_leaf_ = params.get_string("binleaf", "auto") == "auto"
+                  ? -1
+                  : int(params.get_int("binleaf", 0, 0, 64));
   // optimize=auto: one pass of treelet restructuring for sets of up to kOptimizeBelow
   // primitives, none above (where a pass gained 0-2 % for a third more build time, past
   // Embree's on spheres-1m at one thread; docs/accel.md).
@@ -333,7 +381,14 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
       if (presplit) presplit_refs(prims, refs, presplit_);
       return refs;
     };
-    b.tree = build_binary_bvh(make_refs(), bp, false, &prims);
+    // With leaves merged by the collapse, the binary build stops at smaller ones.
+    BvhBuildParams bin_params = bp;
+    const int bin_leaf = bin_leaf_ >= 0                           ? bin_leaf_
+                         : W == 16 && prims.size() <= kMergeBelow ? 8
+                                                                  : 0;
+    const bool merge = sah_collapse_ && bin_leaf > 0 && bin_leaf < bp.max_leaf;
+    if (merge) bin_params.max_leaf = bin_leaf;
+    b.tree = build_binary_bvh(make_refs(), bin_params, false, &prims);
     const int passes = optimize_ >= 0 ? optimize_ : prims.size() <= kOptimizeBelow ? 1 : 0;
     if (passes > 0) {
       const TreeletStats st = optimize_treelets(b.tree.nodes, passes);
@@ -344,14 +399,16 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
       // the tree is built again and left as built.
       if (st.max_depth >= size_t(kBvhStackSize)) {
         b = Built{};
-        b.tree = build_binary_bvh(make_refs(), bp, false, &prims);
+        b.tree = build_binary_bvh(make_refs(), bin_params, false, &prims);
       }
     }
     const BinaryBvh& tree = b.tree;
     std::optional<SahCollapse> plan;
     if (sah_collapse_ && !tree.nodes.empty() && !tree.nodes[0].is_leaf())
-      plan.emplace(tree.nodes, W, bp.traversal_cost, bp.block_shift);
-    Collapser<W> collapser(tree.nodes, b.full, plan ? &*plan : nullptr, octant_order_);
+      plan.emplace(tree.nodes, W, bp.traversal_cost, bp.block_shift,
+                   merge ? uint32_t(bp.max_leaf) : 0u);
+    Collapser<W> collapser(tree.nodes, b.full, plan ? &*plan : nullptr, octant_order_,
+                           &b.tree.refs);
     if (!tree.nodes.empty()) {
       // At most one wide node per binary inner node: reserving that bound (only the pages
       // written are touched) and trimming afterwards costs a copy of the wide nodes, where
@@ -359,6 +416,8 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
       b.full.reserve(tree.nodes[0].is_leaf() ? 1 : tree.leaves - 1);
       if (tree.nodes[0].is_leaf())
         collapser.emit_leaf_root(tree.nodes[0]);
+      else if (plan && plan->merged(0))
+        collapser.emit_merged_root();
       else
         collapser.emit(0, 0);
     }

@@ -8,14 +8,17 @@
 /// for 8, two AVX registers for 16); a ray reaches a leaf in half (a third, a quarter) of the
 /// binary tree's dependent node fetches. Children are visited nearest first.
 ///
-/// Parameters: the binary build's leaf=N (default 8; 16 for width 16), bins=N (default 16),
+/// Parameters: leaf=N, the largest leaf (default 8; 16 for width 16), bins=N (default 16),
 /// trav=X (default 2); collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h,
-/// the default, or largest-area opening); optimize=N|auto (passes of treelet restructuring over the
-/// binary tree before the collapse, build/treelet_opt.h; auto, the default: one for sets of up to
-/// 2^18 primitives, none above); interleave=auto|on|off (whether batch queries,
-/// intersect_batch and occluded_batch, alternate between 8 rays' traversals a node at a time,
-/// so that each ray's next node loads while the others work; auto: when the structure exceeds
-/// 16 MiB, where the loads miss the caches); the 8-wide one also nodes=full|compressed (the
+/// the default, or largest-area opening); binleaf=N|auto (with collapse=sah and N below leaf,
+/// the binary build stops at leaves of N and the collapse may merge a subtree of up to `leaf`
+/// references into one leaf where the SAH says so; 0: no merging; auto, the default: 8 for
+/// width 16 over sets of up to 2^16 primitives, no merging otherwise); optimize=N|auto (passes of
+/// treelet restructuring over the binary tree before the collapse, build/treelet_opt.h; auto, the
+/// default: one for sets of up to 2^18 primitives, none above); interleave=auto|on|off (whether
+/// batch queries, intersect_batch and occluded_batch, alternate between 8 rays' traversals a node
+/// at a time, so that each ray's next node loads while the others work; auto: when the structure
+/// exceeds 16 MiB, where the loads miss the caches); the 8-wide one also nodes=full|compressed (the
 /// node layout) and order=distance|octant (how closest-hit rays order the children they
 /// visit); anyhit=auto|span|lanes (which inner child an any-hit ray visits first when no leaf
 /// is hit: the longest span through its box, or the lowest lane; auto: span on AVX-512
@@ -96,6 +99,7 @@ class WideBvh final : public Accelerator {
   BvhBuildParams params_;
   bool sah_collapse_ = true;  ///< collapse=sah (default): the SAH-optimal collapse, else greedy
   double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
+  int bin_leaf_ = 0;   ///< binary build's leaf size when the collapse merges leaves (0: none)
   int optimize_ = -1;  ///< optimize=N: treelet restructuring passes (treelet_opt.h); -1: auto
   /// order=octant: closest-hit rays visit the children a node's test keeps in the order of the
   /// ray's octant (slots laid out for it by the collapse) instead of by entry distance.

@@ -9,8 +9,13 @@
 
 namespace penumbra {
 
-SahCollapse::SahCollapse(const BvhNodeArray& bin, int width, float node_cost, int block_shift)
-    : bin_(bin), width_(width), block_shift_(block_shift), node_cost_(node_cost) {
+SahCollapse::SahCollapse(const BvhNodeArray& bin, int width, float node_cost, int block_shift,
+                         uint32_t max_leaf)
+    : bin_(bin),
+      width_(width),
+      block_shift_(block_shift),
+      node_cost_(node_cost),
+      max_leaf_(max_leaf) {
   if (width < 2 || width > kMaxWidth) throw Error("SahCollapse: width must be in 2..16");
   if (bin.empty() || bin[0].is_leaf()) return;
   dense_.resize(bin.size());
@@ -25,6 +30,7 @@ SahCollapse::SahCollapse(const BvhNodeArray& bin, int width, float node_cost, in
   }
   cost_.resize(size_t(rows) * width_);
   choice_.resize(size_t(rows) * width_);
+  if (max_leaf_ > 0) refs_.resize(rows);
   plan(0, rows >= kParallelRows ? kParallelDepth : 0);
   root_cost_ = cost_[row(0)];
 }
@@ -33,8 +39,10 @@ void SahCollapse::plan(uint32_t b, int parallel_depth) {
   const BvhNode& n = bin_[b];
   const size_t r = row(b);
   const float area = n.bounds().surface_area();
+  const auto tests_of = [&](uint32_t count) { return float(((count - 1) >> block_shift_) + 1); };
   if (n.is_leaf()) {
-    const float tests = float(((n.count - 1) >> block_shift_) + 1);
+    if (max_leaf_ > 0) refs_[dense_[b]] = n.count;
+    const float tests = tests_of(n.count);
     for (int i = 0; i < width_; ++i) cost_[r + i] = area * tests, choice_[r + i] = 0;
     return;
   }
@@ -51,6 +59,14 @@ void SahCollapse::plan(uint32_t b, int parallel_depth) {
   int k = 1;
   cost_[r] = node_cost_ * area + distribute(b, width_, k);
   choice_[r] = 0;
+  // Or one leaf of the subtree's references, where they are few enough and that is cheaper
+  // (Ylitie et al. 2017 decide leaves in the same table).
+  if (max_leaf_ > 0) {
+    const uint32_t refs = refs_[dense_[n.index]] + refs_[dense_[n.index + 1]];
+    refs_[dense_[b]] = refs;
+    if (refs <= max_leaf_ && area * tests_of(refs) <= cost_[r])
+      cost_[r] = area * tests_of(refs), choice_[r] = kMerge;
+  }
   for (int i = 2; i <= width_; ++i) {
     const float c = distribute(b, i, k);
     if (c < cost_[r + i - 2]) {

@@ -18,11 +18,18 @@ class SahCollapse {
   static constexpr int kMaxWidth = 16;
 
   /// Plans the collapse of `bin` (root at 0, an inner node) into nodes of at most `width` (2..16)
-  /// children.
-  SahCollapse(const BvhNodeArray& bin, int width, float node_cost, int block_shift);
+  /// children. With `max_leaf` > 0, a binary inner node whose subtree holds at most that many
+  /// references may also become one leaf of them all (merged(); the root too, then the wide
+  /// tree's one leaf).
+  SahCollapse(const BvhNodeArray& bin, int width, float node_cost, int block_shift,
+              uint32_t max_leaf = 0);
 
   /// The children of the wide node made for binary inner node `b`; returns their number.
   int children(uint32_t b, uint32_t* kids) const;
+
+  /// True where binary inner node `b` (a child slot of a planned wide node, or the root) is to
+  /// be one leaf of its subtree's references.
+  bool merged(uint32_t b) const { return !bin_[b].is_leaf() && choice_[row(b)] == kMerge; }
 
   /// SAH cost of the planned wide tree, relative to the root's area.
   double cost() const;
@@ -44,9 +51,13 @@ class SahCollapse {
   /// Row of binary node `b` (reachable nodes only are numbered).
   size_t row(uint32_t b) const { return size_t(dense_[b]) * width_; }
 
+  /// choice_ of a binary inner node made one leaf (one slot: the low nibble is 0).
+  static constexpr uint8_t kMerge = 0x10;
+
   const BvhNodeArray& bin_;
   int width_, block_shift_;
   float node_cost_;
+  uint32_t max_leaf_;
   // The tables take tens of megabytes on a million triangles: in huge pages (ArrayAllocator),
   // whose first touch costs a tenth of that of ordinary pages on the virtual machines measured,
   // and not zeroed first (every entry read is written before: those of reachable nodes).
@@ -55,10 +66,12 @@ class SahCollapse {
   Table<uint32_t> dense_;  ///< binary node -> row
   /// cost_[row + i - 1]: the least cost of the subtree as at most i slots of a wide node (i in
   /// 1..width). choice_ says how: low nibble `split` = 0 for one slot (the node itself: a leaf,
-  /// or an inner node that becomes a wide node), else the left child takes `split` of `used`
-  /// (high nibble: used - 1, so that 16 fits) slots and the right one the rest.
+  /// an inner node that becomes a wide node, or with kMerge one that becomes a leaf), else the
+  /// left child takes `split` of `used` (high nibble: used - 1, so that 16 fits) slots and the
+  /// right one the rest.
   Table<float> cost_;
   Table<uint8_t> choice_;
+  Table<uint32_t> refs_;  ///< references in the subtree of each row (when merging)
   float root_cost_ = 0;
 };
 
