@@ -20,9 +20,10 @@
 namespace penumbra::test {
 namespace {
 
-BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf, int block_shift = 2) {
+BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf, int block_shift = 2, int bins = 16) {
   BvhBuildParams p;
   p.max_leaf = max_leaf;
+  p.bins = bins;
   p.block_shift = block_shift;
   return build_binary_bvh(make_prim_refs(prims), p);
 }
@@ -119,13 +120,14 @@ TEST(SahCollapse, FindsTheCheapestCollapseWithMergedLeaves) {
   }
 }
 
-// The 16-wide structure with merged leaves reports the plan's cost for its binary tree.
+// The 16-wide structure with merged leaves reports the plan's cost for its binary tree (leaves
+// of up to 8, 32 bins).
 TEST(SahCollapse, MergedPlanCostIsTheBuiltTrees) {
   for (const auto& scene : {random_soup(3000, 3), torus(40, 30), room_with_boxes(30, 4)}) {
     auto merged = make_accelerator("bvh:spatial=0,optimize=0,width=16,binleaf=8");
     merged->build(scene.prims);
     const double s = extra_stat(*merged, "sah_cost");
-    const BinaryBvh tree = binary_tree(scene.prims, 8, 3);
+    const BinaryBvh tree = binary_tree(scene.prims, 8, 3, 32);
     const SahCollapse plan(tree.nodes, 16, 2.0f, 3, 16);
     EXPECT_NEAR(plan.cost(), s, 1e-4 * s) << scene.name;
     EXPECT_EQ(merged->stats().prim_refs, scene.prims.size()) << scene.name;

@@ -303,6 +303,7 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
   // binleaf=auto: 8 in the 16-wide tree over sets of up to kMergeBelow primitives, where the
   // traversal waits on arithmetic more than on memory; no merging elsewhere.
+  bins_given_ = params.has("bins");
   bin_leaf_ = params.get_string("binleaf", "auto") == "auto"
                   ? -1
                   : int(params.get_int("binleaf", 0, 0, 64));
@@ -388,6 +389,10 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
                                                                   : 0;
     const bool merge = sah_collapse_ && bin_leaf > 0 && bin_leaf < bp.max_leaf;
     if (merge) bin_params.max_leaf = bin_leaf;
+    // And, unless bins=N says otherwise, with twice the bins: the finer splits lower the wide
+    // SAH cost (the bunny 9.60 -> 9.41), for a few tenths of a millisecond on these small sets
+    // (incoherent rays +2 % on the bunny and human_blend).
+    if (merge && !bins_given_) bin_params.bins = 32;
     b.tree = build_binary_bvh(make_refs(), bin_params, false, &prims);
     const int passes = optimize_ >= 0 ? optimize_ : prims.size() <= kOptimizeBelow ? 1 : 0;
     if (passes > 0) {

@@ -13,7 +13,8 @@
 /// the default, or largest-area opening); binleaf=N|auto (with collapse=sah and N below leaf,
 /// the binary build stops at leaves of N and the collapse may merge a subtree of up to `leaf`
 /// references into one leaf where the SAH says so; 0: no merging; auto, the default: 8 for
-/// width 16 over sets of up to 2^16 primitives, no merging otherwise); optimize=N|auto (passes of
+/// width 16 over sets of up to 2^16 primitives, built with 32 bins unless bins=N is given, no
+/// merging otherwise); optimize=N|auto (passes of
 /// treelet restructuring over the binary tree before the collapse, build/treelet_opt.h; auto, the
 /// default: one for sets of up to 2^18 primitives, none above); interleave=auto|on|off (whether
 /// batch queries, intersect_batch and occluded_batch, alternate between 8 rays' traversals a node
@@ -99,6 +100,7 @@ class WideBvh final : public Accelerator {
   BvhBuildParams params_;
   bool sah_collapse_ = true;  ///< collapse=sah (default): the SAH-optimal collapse, else greedy
   double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
+  bool bins_given_ = false;    ///< bins=N given (else merging builds use 32)
   int bin_leaf_ = 0;   ///< binary build's leaf size when the collapse merges leaves (0: none)
   int optimize_ = -1;  ///< optimize=N: treelet restructuring passes (treelet_opt.h); -1: auto
   /// order=octant: closest-hit rays visit the children a node's test keeps in the order of the
