@@ -324,6 +324,25 @@ TEST(BvhBuild, CoincidentAndExponentialPrimitivesStayWithinTheStackDepth) {
   }
 }
 
+// few_bins caps the bins of nodes under 256 references only: over 200 references the tree is
+// the one binned with few_bins throughout; over thousands its upper levels use all the bins.
+TEST(BvhBuild, FewBinsApplyToSmallNodesOnly) {
+  const auto tree = [](const TestScene& s, int bins, int few_bins) {
+    BvhBuildParams p;
+    p.bins = bins, p.few_bins = few_bins, p.parallel_min = 1u << 30;
+    return build_binary_bvh(make_prim_refs(s.prims), p);
+  };
+  const auto same = [](const BinaryBvh& a, const BinaryBvh& b) {
+    return a.nodes.size() == b.nodes.size() &&
+           std::memcmp(a.nodes.data(), b.nodes.data(), a.nodes.size() * sizeof(BvhNode)) == 0;
+  };
+  const TestScene small = random_soup(200, 41), large = random_soup(20000, 42);
+  EXPECT_TRUE(same(tree(small, 64, 8), tree(small, 8, 0)));
+  EXPECT_FALSE(same(tree(small, 64, 0), tree(small, 8, 0)));
+  EXPECT_FALSE(same(tree(large, 64, 8), tree(large, 8, 0)));
+  EXPECT_FALSE(same(tree(large, 64, 8), tree(large, 64, 0)));
+}
+
 TEST(BvhBuild, SameTreeForEveryThreadCount) {
   // Large enough for parallel sorts, sweeps, partitions and subtrees.
   const TestScene s = torus(200, 125);

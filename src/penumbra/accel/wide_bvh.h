@@ -8,15 +8,14 @@
 /// for 8, two AVX registers for 16); a ray reaches a leaf in half (a third, a quarter) of the
 /// binary tree's dependent node fetches. Children are visited nearest first.
 ///
-/// Parameters: leaf=N, the largest leaf (default 8; 16 for width 16), bins=N (default 16),
-/// trav=X (default 2); collapse=sah|greedy (the SAH-optimal collapse of build/wide_collapse.h,
-/// the default, or largest-area opening); binleaf=N|auto (with collapse=sah and N below leaf,
-/// the binary build stops at leaves of N and the collapse may merge a subtree of up to `leaf`
-/// references into one leaf where the SAH says so; 0: no merging; auto, the default: 8 for
-/// width 16 over sets of up to 2^16 primitives, built with 32 bins unless bins=N is given, no
-/// merging otherwise); optimize=N|auto (passes of
-/// treelet restructuring over the binary tree before the collapse, build/treelet_opt.h; auto, the
-/// default: one for sets of up to 2^18 primitives, none above); interleave=auto|on|off (whether
+/// Parameters: leaf=N, the largest leaf (default 8; 16 for width 16), bins=N (default 16; 32 for
+/// width 16), trav=X (default 2); collapse=sah|greedy (the SAH-optimal collapse of
+/// build/wide_collapse.h, the default, or largest-area opening); binleaf=N|auto (with collapse=sah
+/// and N below leaf, the binary build stops at leaves of N and the collapse may merge a subtree of
+/// up to `leaf` references into one leaf where the SAH says so; 0: no merging; auto, the default: 8
+/// for width 16 over sets of up to 2^16 primitives, no merging otherwise); optimize=N|auto (passes
+/// of treelet restructuring over the binary tree before the collapse, build/treelet_opt.h; auto,
+/// the default: one for sets of up to 2^18 primitives, none above); interleave=auto|on|off (whether
 /// batch queries, intersect_batch and occluded_batch, alternate between 8 rays' traversals a node
 /// at a time, so that each ray's next node loads while the others work; auto: when the structure
 /// exceeds 16 MiB, where the loads miss the caches); the 8-wide one also nodes=full|compressed (the

@@ -29,6 +29,9 @@ constexpr float kSpatialMargin = 0.97f;
 /// of the object split's cost (a subtree far from splitting spatially stays compact in memory).
 constexpr float kSpatialRoom = 1.25f;
 
+/// Nodes of fewer references than this are binned with at most `few_bins` bins.
+constexpr uint32_t kFewBinsBelow = 256;
+
 /// The binned SAH strategy: Wald 2007, with the object median where no bin boundary separates
 /// the references or the tree is too deep; with `prims`, also spatial splits (spatial_split.h).
 struct BinnedSplitter {
@@ -48,7 +51,8 @@ struct BinnedSplitter {
       return NodeSplit::make_leaf();
     SahSplit split;
     // Fewer bins for small nodes: the sweep costs O(bins) whatever the node size.
-    BinMapping map(centroids, std::min(p.bins, std::max(4, int(n))));
+    const int bins = n < kFewBinsBelow && p.few_bins > 0 ? std::min(p.bins, p.few_bins) : p.bins;
+    BinMapping map(centroids, std::min(bins, std::max(4, int(n))));
     if (depth < kMaxSahDepth)
       split = find_binned_split({refs + b, n}, map, n >= p.parallel_min, p.block_shift);
     // A spatial split where the object split's children overlap (or none separates them) and

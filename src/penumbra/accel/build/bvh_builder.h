@@ -25,6 +25,9 @@ enum class BvhSplitMethod {
 struct BvhBuildParams {
   BvhSplitMethod method = BvhSplitMethod::kBinned;  ///< split strategy
   int bins = 16;                                    ///< SAH bins per axis, in [2, kMaxBins]
+  /// With few_bins > 0, nodes of fewer than 256 references are binned with at most that many
+  /// (the many small nodes of a large set are most of its binning time).
+  int few_bins = 0;
   int max_leaf = 8;                                 ///< most references in one leaf
   float traversal_cost = 2.0f;  ///< cost of an inner node relative to one primitive test
   /// Leaves are tested 2^block_shift primitives at a time (SIMD blocks); the SAH counts blocks.
