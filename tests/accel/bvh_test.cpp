@@ -523,6 +523,20 @@ TEST(Bvh, DefaultWidthFollowsTheTarget) {
 
 // The 16-wide tree answers as brute force on a set large enough for several levels of 16-wide
 // nodes with every kind of child (inner, leaf, empty slots).
+/// Rays on which `accel` answers otherwise than `brute`: a closest hit (hit or miss, t, primitive)
+/// or an any-hit query.
+size_t differences(const Accelerator& brute, const Accelerator& accel,
+                   const std::vector<Ray>& rays) {
+  size_t differ = 0;
+  for (const Ray& r : rays) {
+    Hit a, b;
+    const bool ha = brute.intersect(r, a), hb = accel.intersect(r, b);
+    differ += ha != hb || (ha && (a.t != b.t || a.prim != b.prim));
+    differ += brute.occluded(r) != accel.occluded(r);
+  }
+  return differ;
+}
+
 TEST(WideBvh, SixteenWideAgreesWithBruteOnALargeSet) {
   const TestScene s = random_soup(20000, 21);
   auto brute = make_accelerator("brute");
@@ -530,15 +544,7 @@ TEST(WideBvh, SixteenWideAgreesWithBruteOnALargeSet) {
   auto wide = make_accelerator("bvh:width=16");
   wide->build(s.prims);
   EXPECT_GE(wide->stats().max_depth, 3u);
-  const std::vector<Ray> rays = mixed_rays(s.prims, 3000, 22);
-  size_t differ = 0;
-  for (const Ray& r : rays) {
-    Hit a, b;
-    const bool ha = brute->intersect(r, a), hb = wide->intersect(r, b);
-    differ += ha != hb || (ha && (a.t != b.t || a.prim != b.prim));
-    differ += brute->occluded(r) != wide->occluded(r);
-  }
-  EXPECT_EQ(differ, 0u);
+  EXPECT_EQ(differences(*brute, *wide, mixed_rays(s.prims, 3000, 22)), 0u);
 }
 
 // Leaves merged by the SAH collapse (binleaf below leaf): gathered from binary subtrees whose
@@ -557,14 +563,7 @@ TEST(WideBvh, MergedLeavesAgreeWithBrute) {
                              "bvh:width=8,binleaf=2,optimize=2", "bvh4:binleaf=1"}) {
       auto wide = make_accelerator(spec);
       wide->build(s.prims);
-      size_t differ = 0;
-      for (const Ray& r : rays) {
-        Hit a, b;
-        const bool ha = brute->intersect(r, a), hb = wide->intersect(r, b);
-        differ += ha != hb || (ha && (a.t != b.t || a.prim != b.prim));
-        differ += brute->occluded(r) != wide->occluded(r);
-      }
-      EXPECT_EQ(differ, 0u) << s.name << ", " << spec;
+      EXPECT_EQ(differences(*brute, *wide, rays), 0u) << s.name << ", " << spec;
     }
     // Without spatial splits every primitive is in exactly one leaf, merged or not.
     auto plain = make_accelerator("bvh:width=16,binleaf=4,spatial=0");
