@@ -585,6 +585,8 @@ TEST(WideBvh, LeafMergingFollowsTheSetSize) {
   EXPECT_THROW(make_accelerator("bvh:binleaf=-1"), Error);
   EXPECT_THROW(make_accelerator("bvh:binleaf=65"), Error);
   EXPECT_THROW(make_accelerator("bvh:binleaf=some"), Error);
+  EXPECT_THROW(make_accelerator("bvh:collapse=greedy,binleaf=4"), Error);
+  EXPECT_NO_THROW(make_accelerator("bvh:collapse=greedy,binleaf=0"));
 }
 
 }  // namespace

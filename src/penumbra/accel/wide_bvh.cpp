@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <bit>
 #include <optional>
-#include <span>
 #include <tuple>
 #include <utility>
 
@@ -229,7 +228,7 @@ constexpr size_t kOptimizeBelow = size_t(1) << 18;
 
 /// binleaf=auto merges leaves in the collapse of the 16-wide tree over sets of at most this many
 /// primitives: small sets, whose tree stays in the caches, where the SAH's leaves are the faster
-/// (the bunny's and human_blend's bounce rays +5-13 %); above, fewer and larger leaves (the
+/// (the bunny's and human_blend's bounce rays +5-11 %); above, fewer and larger leaves (the
 /// binary build's) are, as each node fetched is a cache miss (spheres-1m's incoherent rays -7 %
 /// with merging, and half as much build time again).
 constexpr size_t kMergeBelow = size_t(1) << 16;
@@ -301,12 +300,16 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
                             params.name(), collapse));
   sah_collapse_ = collapse == "sah";
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
-  // binleaf=auto: 8 in the 16-wide tree over sets of up to kMergeBelow primitives, where the
-  // traversal waits on arithmetic more than on memory; no merging elsewhere.
+  // bins=N given: the 16-wide tree's default of 32 does not apply (build()).
   bins_given_ = params.has("bins");
+  // binleaf=auto: 8 in the 16-wide tree over sets of up to kMergeBelow primitives, where the
+  // traversal waits on arithmetic more than on memory; no merging elsewhere. The greedy
+  // collapse does not merge: rejected rather than ignored.
   bin_leaf_ = params.get_string("binleaf", "auto") == "auto"
                   ? -1
                   : int(params.get_int("binleaf", 0, 0, 64));
+  if (!sah_collapse_ && bin_leaf_ > 0)
+    throw Error(fmt::format("{}: parameter 'binleaf' needs collapse=sah", params.name()));
   // optimize=auto: one pass of treelet restructuring for sets of up to kOptimizeBelow
   // primitives, none above (where a pass gained 0-2 % for a third more build time, past
   // Embree's on spheres-1m at one thread; docs/accel.md).
