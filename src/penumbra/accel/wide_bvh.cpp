@@ -460,10 +460,23 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
 
   leaf_ = LeafPrims{};
   blocks_.resize(0);
-  if (prims.all_triangles())
+  if (prims.all_triangles()) {
     make_blocks(full, prims, tree.refs);
-  else
-    leaf_.build(prims, tree.refs);
+  } else {
+    // Only the leaves' references, in node order (LeafPrims copies every slot it is given;
+    // merged leaves left their originals behind).
+    PrimRefArray packed;
+    packed.reserve(leaf_refs);
+    for (WideNode<W>& n : full)
+      for (int i = 0; i < W; ++i) {
+        if (n.count[i] == 0) continue;
+        const auto first = static_cast<uint32_t>(packed.size());
+        packed.insert(packed.end(), tree.refs.begin() + n.child[i],
+                      tree.refs.begin() + n.child[i] + n.count[i]);
+        n.child[i] = first;
+      }
+    leaf_.build(prims, packed);
+  }
   if constexpr (std::is_same_v<Node, WideNode<W>>) {
     nodes_ = std::move(full);
   } else {
