@@ -99,8 +99,9 @@ class WideBvh final : public Accelerator {
   BvhBuildParams params_;
   bool sah_collapse_ = true;  ///< collapse=sah (default): the SAH-optimal collapse, else greedy
   double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
-  bool bins_given_ = false;    ///< bins=N given (else merging builds use 32)
-  int bin_leaf_ = 0;   ///< binary build's leaf size when the collapse merges leaves (0: none)
+  bool bins_given_ = false;    ///< bins=N given (else the 16-wide tree uses 32)
+  /// binleaf=N: the binary build's leaf size when the collapse merges (0: none); -1: auto
+  int bin_leaf_ = -1;
   int optimize_ = -1;  ///< optimize=N: treelet restructuring passes (treelet_opt.h); -1: auto
   /// order=octant: closest-hit rays visit the children a node's test keeps in the order of the
   /// ray's octant (slots laid out for it by the collapse) instead of by entry distance.
