@@ -183,6 +183,55 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
   EXPECT_NE(err_.find("valid:"), std::string::npos) << err_;
 }
 
+// --versus prints and writes every other structure's throughput over the named one's: the
+// quotients of their ratios to Embree when it ran, else of their rates; the named structure and
+// Embree get none. A name that is not among --accel, or no structure at all, is refused.
+TEST_F(CliTest, AccelBenchVersusDividesByTheNamedStructure) {
+  const std::string common = "accel-bench " + scene("meshes/bunny.obj") +
+                             " --threads 1 --repeat 1 --rays 2000 --image 32";
+  ASSERT_EQ(run(common + " --accel bvh,kdtree,grid --versus kdtree --json " + path("vs.json")), 0)
+      << err_;
+  EXPECT_NE(out_.find("bvh                    over kdtree:sah at 1 thread: primary "),
+            std::string::npos)
+      << out_;
+  EXPECT_NE(out_.find("grid                   over kdtree:sah at 1 thread"), std::string::npos);
+  EXPECT_EQ(out_.find("kdtree:sah             over"), std::string::npos) << out_;
+  const auto rows = nlohmann::json::parse(slurp(path("vs.json")));
+  const nlohmann::json* base = nullptr;
+  for (const auto& row : rows)
+    if (row["accel"] == "kdtree:sah") base = &row;
+  ASSERT_NE(base, nullptr) << rows.dump();
+  EXPECT_FALSE(base->contains("versus"));
+  EXPECT_FALSE((*base)["runs"][0].contains("over_versus"));
+  size_t others = 0;
+  for (const auto& row : rows) {
+    if (&row == base) continue;
+    if (row["accel"] == "embree") {
+      EXPECT_FALSE(row.contains("versus")) << row.dump();
+      continue;
+    }
+    ++others;
+    EXPECT_EQ(row["versus"], "kdtree:sah") << row.dump();
+    const auto& run = row["runs"][0];
+    const auto& b = (*base)["runs"][0];
+    const auto& over = run["over_versus"];
+    const bool paired = run.contains("incoherent_vs_embree");
+    EXPECT_EQ(over["through_embree"], paired);
+    for (const char* set : {"primary", "incoherent", "occlusion", "bounce", "shadow"}) {
+      const std::string key = std::string(set) + (paired ? "_vs_embree" : "_mrays");
+      EXPECT_DOUBLE_EQ(over[set].get<double>(), run[key].get<double>() / b[key].get<double>())
+          << set << " in " << row.dump();
+    }
+  }
+  EXPECT_EQ(others, 2u);
+  EXPECT_NE(run(common + " --accel bvh --versus kdtree"), 0);
+  EXPECT_NE(err_.find("--versus kdtree: not one of the structures of --accel"), std::string::npos)
+      << err_;
+  EXPECT_NE(run(common + " --accel bvh --versus nope"), 0);
+  EXPECT_NE(err_.find("--versus: unknown acceleration structure 'nope'"), std::string::npos)
+      << err_;
+}
+
 // --batch traces through the batch queries (and Embree's stream API): the JSON says so, and the
 // incoherent hits are the single queries' (the same count of differences from Embree's).
 TEST_F(CliTest, AccelBenchBatchQueriesFindTheSingleQueriesHits) {

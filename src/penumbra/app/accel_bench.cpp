@@ -309,6 +309,9 @@ void add_accel_bench_command(CLI::App& app) {
                   "of a structure alternates with Embree's every 131072 rays, and 'x embree' is "
                   "the median ratio")
       ->transform(integer_in(1, 100));
+  cmd->add_option("--versus", args->versus,
+                  "A structure of --accel: also print every other one's throughput over its own, "
+                  "from their paired ratios to Embree when it ran, else from the rates");
   cmd->callback([args] { run_accel_bench(*args); });
 }
 
@@ -408,6 +411,17 @@ void run_accel_bench(const AccelBenchArgs& args) {
   }
   std::vector<std::unique_ptr<Accelerator>> accels;
   for (const auto& s : specs) accels.push_back(make_accelerator(s));  // reject bad names first
+  // The --versus structure by the name its row will have.
+  std::string versus;
+  if (!args.versus.empty()) {
+    try {
+      versus = make_accelerator(args.versus)->name();
+    } catch (const Error& e) {
+      throw Error(fmt::format("--versus: {}", e.what()));
+    }
+    if (std::none_of(accels.begin(), accels.end(), [&](const auto& a) { return a->name() == versus; }))
+      throw Error(fmt::format("--versus {}: not one of the structures of --accel", args.versus));
+  }
 
   RaySets rays;
   rays.primary = primary_rays(prims.bounds(), args.image, args.image);
@@ -522,10 +536,10 @@ void run_accel_bench(const AccelBenchArgs& args) {
     rows.push_back(row);
     accel.reset();  // free its memory before the next build
   }
-  print_bench_table(rows, build_threads, args.repeat, args.batch);
+  print_bench_table(rows, build_threads, args.repeat, args.batch, versus);
   if (!args.json.empty())
     write_bench_json(args.json, rows, args.input, mesh.triangle_count(), build_threads,
-                     args.batch);
+                     args.batch, versus);
 }
 
 }  // namespace penumbra::app

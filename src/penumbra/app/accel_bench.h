@@ -30,6 +30,9 @@ struct AccelBenchArgs {
   /// Build Embree's scene in its robust mode (--embree-robust): the same guarantees as ours
   /// (no ray through a shared edge, no box missed by rounding) instead of Embree's defaults.
   bool embree_robust = false;
+  /// A structure of `accels` (as named there, e.g. "kdtree"): every other one's throughput is
+  /// also printed over its own (--versus).
+  std::string versus;
 };
 
 /// Registers the `accel-bench` subcommand on `app`.

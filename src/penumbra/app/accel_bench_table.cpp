@@ -23,10 +23,33 @@ std::string or_dash(const std::optional<T>& v, const char* format) {
   return v ? fmt::format(fmt::runtime(format), *v) : "-";
 }
 
+/// The row named `name`, or null.
+const BenchRow* find_row(const std::vector<BenchRow>& rows, const std::string& name) {
+  for (const BenchRow& r : rows)
+    if (r.accel == name) return &r;
+  return nullptr;
+}
+
 }  // namespace
 
+BenchOver bench_over(const BenchRates& a, const BenchRates& b) {
+  BenchOver o;
+  o.through_embree = a.incoherent_vs_embree && b.incoherent_vs_embree;
+  const auto q = [&](double x, double y, const std::optional<double>& xe,
+                     const std::optional<double>& ye) {
+    if (o.through_embree) return *xe / *ye;
+    return y > 0 ? x / y : 0.0;
+  };
+  o.primary = q(a.primary, b.primary, a.primary_vs_embree, b.primary_vs_embree);
+  o.incoherent = q(a.incoherent, b.incoherent, a.incoherent_vs_embree, b.incoherent_vs_embree);
+  o.occlusion = q(a.occlusion, b.occlusion, a.occlusion_vs_embree, b.occlusion_vs_embree);
+  o.bounce = q(a.bounce, b.bounce, a.bounce_vs_embree, b.bounce_vs_embree);
+  o.shadow = q(a.shadow, b.shadow, a.shadow_vs_embree, b.shadow_vs_embree);
+  return o;
+}
+
 void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat,
-                       bool batch) {
+                       bool batch, const std::string& versus) {
   if (rows.empty()) return;
   // Group titles over the throughput columns, then the column names.
   const std::string lead =
@@ -62,6 +85,20 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
             "shadow {:.2f}\n",
             r.accel, thread_label(t.threads), *t.primary_vs_embree, *t.occlusion_vs_embree,
             *t.bounce_vs_embree, *t.shadow_vs_embree);
+  // Every other structure over the --versus one, at each thread count.
+  if (const BenchRow* base = versus.empty() ? nullptr : find_row(rows, versus))
+    for (const BenchRow& r : rows) {
+      if (&r == base || r.accel.rfind("embree", 0) == 0) continue;
+      for (size_t i = 0; i < r.rates.size() && i < base->rates.size(); ++i) {
+        const BenchOver o = bench_over(r.rates[i], base->rates[i]);
+        fmt::print(
+            "{:<22} over {} at {}: primary {:.2f}, incoherent {:.2f}, occlusion {:.2f}, bounce "
+            "{:.2f}, shadow {:.2f} ({})\n",
+            r.accel, versus, thread_label(r.rates[i].threads), o.primary, o.incoherent,
+            o.occlusion, o.bounce, o.shadow,
+            o.through_embree ? "their ratios to Embree" : "their rates");
+      }
+    }
   // The structures' own counts of the incoherent queries.
   for (const BenchRow& r : rows)
     if (r.nodes_per_ray) {
@@ -94,7 +131,9 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
 }
 
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
-                      const std::string& mesh, size_t triangles, int build_threads, bool batch) {
+                      const std::string& mesh, size_t triangles, int build_threads, bool batch,
+                      const std::string& versus) {
+  const BenchRow* base = versus.empty() ? nullptr : find_row(rows, versus);
   nlohmann::json out = nlohmann::json::array();
   // Which Embree the ratios are against, when one ran (accel-bench --embree-robust).
   std::string embree_mode;
@@ -102,8 +141,10 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
     if (r.accel == "embree" || r.accel == "embree:robust")
       embree_mode = r.accel == "embree" ? "default" : "robust";
   for (const BenchRow& r : rows) {
+    const bool over = base && &r != base && r.accel.rfind("embree", 0) != 0;
     nlohmann::json runs = nlohmann::json::array();
-    for (const BenchRates& t : r.rates) {
+    for (size_t i = 0; i < r.rates.size(); ++i) {
+      const BenchRates& t = r.rates[i];
       nlohmann::json run = {{"threads", t.threads},
                             {"primary_mrays", t.primary},
                             {"incoherent_mrays", t.incoherent},
@@ -116,6 +157,12 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
         run["occlusion_vs_embree"] = *t.occlusion_vs_embree,
         run["bounce_vs_embree"] = *t.bounce_vs_embree,
         run["shadow_vs_embree"] = *t.shadow_vs_embree;
+      if (over && i < base->rates.size()) {
+        const BenchOver o = bench_over(t, base->rates[i]);
+        run["over_versus"] = {{"primary", o.primary},         {"incoherent", o.incoherent},
+                              {"occlusion", o.occlusion},     {"bounce", o.bounce},
+                              {"shadow", o.shadow},           {"through_embree", o.through_embree}};
+      }
       runs.push_back(run);
     }
     nlohmann::json o = {{"accel", r.accel},
@@ -127,6 +174,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
                         {"bytes", r.bytes},
                         {"runs", runs}};
     if (!embree_mode.empty()) o["embree_mode"] = embree_mode;
+    if (over) o["versus"] = versus;
     if (r.nodes) o["nodes"] = *r.nodes;
     if (r.depth) o["depth"] = *r.depth;
     if (r.refs_per_prim) o["refs_per_prim"] = *r.refs_per_prim;

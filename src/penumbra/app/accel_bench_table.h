@@ -39,18 +39,32 @@ struct BenchRow {
   std::vector<std::pair<std::string, double>> extra;
 };
 
+/// One structure's throughput over another's in each ray set, at one thread count.
+struct BenchOver {
+  double primary = 0, incoherent = 0, occlusion = 0, bounce = 0, shadow = 0;
+  /// From the two structures' ratios to Embree (each paired with Embree's runs, so that a load
+  /// changing between the two structures' runs cancels), not from their rates.
+  bool through_embree = false;
+};
+
+/// `a`'s throughput over `b`'s: the quotients of their ratios to Embree when both have them,
+/// else of their rates.
+BenchOver bench_over(const BenchRates& a, const BenchRates& b);
+
 /// Prints the table: build ms (at `build_threads`), MiB, nodes, depth, refs/prim, then primary,
 /// incoherent, occlusion, bounce and shadow Mrays/s and the incoherent ratio to Embree for each
 /// thread count, then the ratios to Embree of the other four,
 /// then the comparison of hits with Embree's; `repeat` runs gave each median. `batch`: the rates
-/// are of batch queries against Embree's stream API (accel-bench --batch).
+/// are of batch queries against Embree's stream API (accel-bench --batch). With `versus` (a
+/// row's name), also every other structure's throughput over that row's (bench_over).
 void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat,
-                       bool batch = false);
+                       bool batch = false, const std::string& versus = "");
 
 /// Writes `rows` to `path` as a JSON array of objects (keys in docs/accel.md; `queries`:
-/// "batch" or "single"); throws Error when the file cannot be written.
+/// "batch" or "single"; with `versus`, each other row's `versus` and its runs' `over_versus`);
+/// throws Error when the file cannot be written.
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows,
                       const std::string& mesh, size_t triangles, int build_threads,
-                      bool batch = false);
+                      bool batch = false, const std::string& versus = "");
 
 }  // namespace penumbra::app
