@@ -187,8 +187,8 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
 // quotients of their ratios to Embree when it ran, else of their rates; the named structure and
 // Embree get none. A name that is not among --accel, or no structure at all, is refused.
 TEST_F(CliTest, AccelBenchVersusDividesByTheNamedStructure) {
-  const std::string common = "accel-bench " + scene("meshes/bunny.obj") +
-                             " --threads 1 --repeat 1 --rays 2000 --image 32";
+  const std::string common =
+      "accel-bench " + scene("meshes/bunny.obj") + " --threads 1 --repeat 1 --rays 2000 --image 32";
   ASSERT_EQ(run(common + " --accel bvh,kdtree,grid --versus kdtree --json " + path("vs.json")), 0)
       << err_;
   EXPECT_NE(out_.find("bvh                    over kdtree:sah at 1 thread: primary "),

@@ -419,7 +419,8 @@ void run_accel_bench(const AccelBenchArgs& args) {
     } catch (const Error& e) {
       throw Error(fmt::format("--versus: {}", e.what()));
     }
-    if (std::none_of(accels.begin(), accels.end(), [&](const auto& a) { return a->name() == versus; }))
+    if (std::none_of(accels.begin(), accels.end(),
+                     [&](const auto& a) { return a->name() == versus; }))
       throw Error(fmt::format("--versus {}: not one of the structures of --accel", args.versus));
   }
 
@@ -538,8 +539,8 @@ void run_accel_bench(const AccelBenchArgs& args) {
   }
   print_bench_table(rows, build_threads, args.repeat, args.batch, versus);
   if (!args.json.empty())
-    write_bench_json(args.json, rows, args.input, mesh.triangle_count(), build_threads,
-                     args.batch, versus);
+    write_bench_json(args.json, rows, args.input, mesh.triangle_count(), build_threads, args.batch,
+                     versus);
 }
 
 }  // namespace penumbra::app

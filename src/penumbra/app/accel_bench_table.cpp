@@ -48,8 +48,8 @@ BenchOver bench_over(const BenchRates& a, const BenchRates& b) {
   return o;
 }
 
-void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat,
-                       bool batch, const std::string& versus) {
+void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int repeat, bool batch,
+                       const std::string& versus) {
   if (rows.empty()) return;
   // Group titles over the throughput columns, then the column names.
   const std::string lead =
@@ -94,9 +94,8 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
         fmt::print(
             "{:<22} over {} at {}: primary {:.2f}, incoherent {:.2f}, occlusion {:.2f}, bounce "
             "{:.2f}, shadow {:.2f} ({})\n",
-            r.accel, versus, thread_label(r.rates[i].threads), o.primary, o.incoherent,
-            o.occlusion, o.bounce, o.shadow,
-            o.through_embree ? "their ratios to Embree" : "their rates");
+            r.accel, versus, thread_label(r.rates[i].threads), o.primary, o.incoherent, o.occlusion,
+            o.bounce, o.shadow, o.through_embree ? "their ratios to Embree" : "their rates");
       }
     }
   // The structures' own counts of the incoherent queries.
@@ -159,9 +158,9 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
         run["shadow_vs_embree"] = *t.shadow_vs_embree;
       if (over && i < base->rates.size()) {
         const BenchOver o = bench_over(t, base->rates[i]);
-        run["over_versus"] = {{"primary", o.primary},         {"incoherent", o.incoherent},
-                              {"occlusion", o.occlusion},     {"bounce", o.bounce},
-                              {"shadow", o.shadow},           {"through_embree", o.through_embree}};
+        run["over_versus"] = {{"primary", o.primary},     {"incoherent", o.incoherent},
+                              {"occlusion", o.occlusion}, {"bounce", o.bounce},
+                              {"shadow", o.shadow},       {"through_embree", o.through_embree}};
       }
       runs.push_back(run);
     }
