@@ -205,8 +205,8 @@ double wide_sah_cost(const WideNodeArray<W>& nodes, float node_cost, int block_s
   double total = 0.0;
   Bounds3 root;
   for (size_t n = 0; n < nodes.size(); ++n) {
+    const WideNode<W>& w = nodes[n];
     for (int i = 0; i < W; ++i) {
-      const WideNode<W>& w = nodes[n];
       if (!(w.box[0][i] <= w.box[1][i])) continue;  // an empty slot
       const Bounds3 b{{w.box[0][i], w.box[2][i], w.box[4][i]},
                       {w.box[1][i], w.box[3][i], w.box[5][i]}};
