@@ -489,10 +489,10 @@ TEST(WideBvh, DistanceOrderVisitsTwoToSixteenChildrenNearestFirst) {
   }
 }
 
-// `bvh` without a width is 16-wide where the build targets AVX-512 and 8-wide elsewhere, with
+// `bvh` without a width is 16-wide where the build targets AVX2 and 8-wide elsewhere, with
 // leaves of up to 16 and 8 triangles; the compressed nodes and the octant order imply 8.
 TEST(Bvh, DefaultWidthFollowsTheTarget) {
-#if defined(__AVX512F__)
+#if defined(__AVX2__)
   EXPECT_NE(dynamic_cast<const WideBvh<16>*>(make_accelerator("bvh").get()), nullptr);
 #else
   EXPECT_NE(dynamic_cast<const WideBvh<8>*>(make_accelerator("bvh").get()), nullptr);

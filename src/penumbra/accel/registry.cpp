@@ -25,11 +25,14 @@ std::unique_ptr<Accelerator> create(const ParamList& p) {
   return std::make_unique<T>(p);
 }
 
-/// The width of `bvh` when none is given: 16 where the build targets AVX-512 (faster there than 8
-/// on every mesh and ray set measured but the small meshes' camera rays, docs/accel.md,
-/// "2026-12-06, twelfth session"), 8 elsewhere (not measured with 16).
+/// The width of `bvh` when none is given: 16 where the build targets AVX2 (the 16-wide node test
+/// is two AVX registers per row, with or without AVX-512). With AVX-512 it was faster than 8 on
+/// every mesh and ray set measured but the small meshes' camera rays (docs/accel.md, "2026-12-06,
+/// twelfth session"); an x86-64-v3 build (AVX2, FMA) on the same Xeon measured the same
+/// (incoherent rays 0.88-1.10 -> 0.96-1.20 x Embree; "2026-12-06, fifteenth session"). 8 on
+/// targets without AVX2, where 16 lanes are two SSE registers or plain arrays (not measured).
 int default_bvh_width() {
-#if defined(__AVX512F__)
+#if defined(__AVX2__)
   return 16;
 #else
   return 8;
@@ -71,7 +74,7 @@ const Registry<Factory>& registry() {
   static const Registry<Factory> all = {
       {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
       {"bvh",
-       "BVH, binned SAH build, width=16 on AVX-512 targets, else 8 (SIMD wide nodes; 4, or 2 "
+       "BVH, binned SAH build, width=16 on AVX2 targets, else 8 (SIMD wide nodes; 4, or 2 "
        "for binary), leaf=16 for width 16, else 8, bins=16, "
        "trav=2, build=binned|median|sweep, collapse=sah|greedy, nodes=full|compressed (8-wide: "
        "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
@@ -95,13 +98,14 @@ const Registry<Factory>& registry() {
       {"bvh:width=8", "bvh with 8-wide nodes (256 bytes), leaves of up to 8", create_bvh},
       {"bvh:width=16", "bvh with 16-wide nodes (512 bytes), leaves of up to 16", create_bvh},
       {"bvh:collapse=greedy",
-       "bvh collapsed from the binary tree greedily (largest-area child opened first)",
-       create_bvh},
+       "bvh collapsed from the binary tree greedily (largest-area child opened first)", create_bvh},
       {"bvh:order=octant",
        "bvh whose closest-hit rays visit children in their octant's order, not by distance",
        create_bvh},
-      {"bvh:spatial=0", "bvh without spatial splits (object splits only, one reference per "
-       "triangle)", create_bvh},
+      {"bvh:spatial=0",
+       "bvh without spatial splits (object splits only, one reference per "
+       "triangle)",
+       create_bvh},
       {"bvh:optimize=0",
        "bvh without treelet restructuring (the binary tree as the binned SAH built it)",
        create_bvh},
