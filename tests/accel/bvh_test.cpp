@@ -470,8 +470,9 @@ TEST(WideBvh, DistanceOrderVisitsTwoToSixteenChildrenNearestFirst) {
         }
         PrimitiveSet prims;
         prims.add_mesh(m, Transform(), 0);
-        // A leaf per tetrahedron; 16-wide nodes past eight children.
-        auto bvh = make_accelerator(k <= 8 ? "bvh:leaf=4" : "bvh:leaf=4,width=16");
+        // A leaf per tetrahedron; 8-wide nodes up to eight children, 16-wide past (whatever the
+        // target's default width).
+        auto bvh = make_accelerator(k <= 8 ? "bvh:leaf=4,width=8" : "bvh:leaf=4,width=16");
         bvh->build(prims);
         ASSERT_EQ(bvh->stats().max_depth, 1u) << k;  // one node: the leaves are its children
         ASSERT_EQ(bvh->stats().leaves, size_t(k));
@@ -489,13 +490,14 @@ TEST(WideBvh, DistanceOrderVisitsTwoToSixteenChildrenNearestFirst) {
   }
 }
 
-// `bvh` without a width is 16-wide where the build targets AVX2 and 8-wide elsewhere, with
-// leaves of up to 16 and 8 triangles; the compressed nodes and the octant order imply 8.
+// `bvh` without a width is 16-wide where the build targets AVX and 4-wide elsewhere (one SSE
+// register per row), with leaves of up to 16 and 8 triangles; the compressed nodes and the
+// octant order imply 8.
 TEST(Bvh, DefaultWidthFollowsTheTarget) {
-#if defined(__AVX2__)
+#if defined(__AVX__)
   EXPECT_NE(dynamic_cast<const WideBvh<16>*>(make_accelerator("bvh").get()), nullptr);
 #else
-  EXPECT_NE(dynamic_cast<const WideBvh<8>*>(make_accelerator("bvh").get()), nullptr);
+  EXPECT_NE(dynamic_cast<const WideBvh<4>*>(make_accelerator("bvh").get()), nullptr);
 #endif
   EXPECT_NE(dynamic_cast<const WideBvh<8>*>(make_accelerator("bvh:order=octant").get()), nullptr);
   using Compressed = WideBvh<8, CompressedNode>;

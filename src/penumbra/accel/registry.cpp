@@ -25,17 +25,20 @@ std::unique_ptr<Accelerator> create(const ParamList& p) {
   return std::make_unique<T>(p);
 }
 
-/// The width of `bvh` when none is given: 16 where the build targets AVX2 (the 16-wide node test
-/// is two AVX registers per row, with or without AVX-512). With AVX-512 it was faster than 8 on
-/// every mesh and ray set measured but the small meshes' camera rays (docs/accel.md, "2026-12-06,
-/// twelfth session"); an x86-64-v3 build (AVX2, FMA) on the same Xeon measured the same
-/// (incoherent rays 0.88-1.10 -> 0.96-1.20 x Embree; "2026-12-06, fifteenth session"). 8 on
-/// targets without AVX2, where 16 lanes are two SSE registers or plain arrays (not measured).
+/// The width of `bvh` when none is given, by what the target's vectors are (docs/accel.md,
+/// "2026-12-06, fifteenth session", builds for four x86-64 levels measured on one Xeon):
+/// - 16 with AVX: the node test is two 256-bit registers per row, with or without AVX2 or
+///   AVX-512, and beat 8 on every mesh and ray set but the small meshes' camera rays (incoherent
+///   rays 0.88-1.10 -> 0.95-1.22 x Embree in AVX and AVX2 builds; with AVX-512 since the
+///   twelfth session);
+/// - 4 without (SSE, or no x86 vectors): one 128-bit register per row; 8 and 16 were slower on
+///   every mesh and ray set of an SSE2 build (incoherent rays 0.72-0.93 x Embree with 4, 0.62-0.83
+///   with 8; camera rays 0.81-1.26 against 0.55-0.72).
 int default_bvh_width() {
-#if defined(__AVX2__)
+#if defined(__AVX__)
   return 16;
 #else
-  return 8;
+  return 4;
 #endif
 }
 
@@ -74,7 +77,7 @@ const Registry<Factory>& registry() {
   static const Registry<Factory> all = {
       {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
       {"bvh",
-       "BVH, binned SAH build, width=16 on AVX2 targets, else 8 (SIMD wide nodes; 4, or 2 "
+       "BVH, binned SAH build, width=16 on AVX targets, else 4 (SIMD wide nodes; 8, or 2 "
        "for binary), leaf=16 for width 16, else 8, bins=16, "
        "trav=2, build=binned|median|sweep, collapse=sah|greedy, nodes=full|compressed (8-wide: "
        "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
@@ -94,7 +97,8 @@ const Registry<Factory>& registry() {
        create_bvh},
       {"bvh:nodes=compressed", "bvh with 128-byte nodes, child boxes quantised to bytes",
        create_bvh},
-      // Both widths whatever the target's default (one of them is `bvh` itself).
+      // Both SIMD widths whatever the target's default (16 is `bvh` itself with AVX; bvh4 below
+      // is the default without).
       {"bvh:width=8", "bvh with 8-wide nodes (256 bytes), leaves of up to 8", create_bvh},
       {"bvh:width=16", "bvh with 16-wide nodes (512 bytes), leaves of up to 16", create_bvh},
       {"bvh:collapse=greedy",

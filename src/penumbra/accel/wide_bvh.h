@@ -1,5 +1,5 @@
 #pragma once
-/// `bvh` (16-wide on AVX2 targets, 8-wide elsewhere: registry.cpp) and `bvh4`: wide BVHs with
+/// `bvh` (16-wide on AVX targets, 4-wide elsewhere: registry.cpp) and `bvh4`: wide BVHs with
 /// 4, 8 or 16 children per node, made by collapsing the binary binned-SAH BVH (Dammertz, Hanika,
 /// Keller 2008, "Shallow Bounding Volume Hierarchies for Fast SIMD Ray Tracing of Incoherent
 /// Rays"; Wald, Benthin, Boulos 2008, "Getting Rid of Packets"; Fuetterling et al. 2017,
