@@ -29,7 +29,7 @@ std::unique_ptr<Accelerator> create(const ParamList& p) {
 /// "2026-12-06, fifteenth session", builds for four x86-64 levels measured on one Xeon):
 /// - 16 with AVX: the node test is two 256-bit registers per row, with or without AVX2 or
 ///   AVX-512, and beat 8 on every mesh and ray set but the small meshes' camera rays (incoherent
-///   rays 0.88-1.10 -> 0.95-1.22 x Embree in AVX and AVX2 builds; with AVX-512 since the
+///   rays 0.87-1.10 -> 0.95-1.22 x Embree in AVX and AVX2 builds; with AVX-512 since the
 ///   twelfth session);
 /// - 4 without (SSE, or no x86 vectors): one 128-bit register per row; 8 and 16 were slower on
 ///   every mesh and ray set of an SSE2 build (incoherent rays 0.72-0.93 x Embree with 4, 0.62-0.83
@@ -78,7 +78,7 @@ const Registry<Factory>& registry() {
       {"brute", "brute force: every primitive for every ray (the reference)", create<BruteForce>},
       {"bvh",
        "BVH, binned SAH build, width=16 on AVX targets, else 4 (SIMD wide nodes; 8, or 2 "
-       "for binary), leaf=16 for width 16, else 8, bins=16, "
+       "for binary), leaf=16 for width 16, else 8, bins=32 for width 16, else 16, "
        "trav=2, build=binned|median|sweep, collapse=sah|greedy, nodes=full|compressed (8-wide: "
        "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
        "as extra references for large triangles, F in [0, 4]), spatial=1 (SBVH spatial splits: "
