@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "penumbra/core/target.h"
 #include "penumbra/image/pfm.h"
 
 #include "cli_fixture.h"
@@ -153,6 +154,8 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
     for (const auto& row : rows) {
       for (const char* key : {"accel", "mesh", "triangles", "build_ms", "build_threads", "bytes"})
         EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
+      // The vectors the code was compiled for (the program and this test share the flags).
+      EXPECT_EQ(row["vectors"], compiled_vectors()) << row.dump();
       if (row["accel"] == "embree") continue;
       ++structures;
       for (const char* key : {"nodes", "depth", "refs_per_prim"})
@@ -168,6 +171,9 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
     }
     EXPECT_EQ(structures, 2u);
     EXPECT_NE(out_.find("Mrays/s"), std::string::npos) << out_;
+    EXPECT_NE(out_.find(std::string("; code compiled for ") + compiled_vectors() + "\n"),
+              std::string::npos)
+        << out_;
   }
   // --image sets the primary rays: 32 x 32 of them.
   ASSERT_EQ(run("accel-bench " + scene("meshes/bunny.obj") +

@@ -24,6 +24,7 @@
 #include "penumbra/app/mesh_check.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
+#include "penumbra/core/target.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/render/camera/camera_registry.h"
 #include "penumbra/scene/mesh_reader.h"
@@ -392,9 +393,11 @@ void run_accel_bench(const AccelBenchArgs& args) {
   check_mesh_input(mesh, args.input);
   PrimitiveSet prims;
   prims.add_mesh(mesh, Transform(), 0);
-  fmt::print("{}: {} triangles, loaded in {:.0f} ms; builds on {} thread(s), rays traced on {}\n",
-             args.input, mesh.triangle_count(), load_timer.elapsed_ms(), build_threads,
-             fmt::join(threads, " and "));
+  fmt::print(
+      "{}: {} triangles, loaded in {:.0f} ms; builds on {} thread(s), rays traced on {}; code "
+      "compiled for {}\n",
+      args.input, mesh.triangle_count(), load_timer.elapsed_ms(), build_threads,
+      fmt::join(threads, " and "), compiled_vectors());
 
   // Structures to run: explicit names, or every registered one.
   std::vector<std::string> specs;

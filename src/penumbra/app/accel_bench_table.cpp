@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "penumbra/core/error.h"
+#include "penumbra/core/target.h"
 #include "penumbra/image/image_io.h"
 
 namespace penumbra::app {
@@ -170,6 +171,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
                         {"build_ms", r.build_ms},
                         {"build_threads", build_threads},
                         {"queries", batch ? "batch" : "single"},
+                        {"vectors", compiled_vectors()},
                         {"bytes", r.bytes},
                         {"runs", runs}};
     if (!embree_mode.empty()) o["embree_mode"] = embree_mode;

@@ -1,0 +1,28 @@
+#pragma once
+/// The vector instruction set the build's code was compiled for (`-march`). Penumbra chooses its
+/// SIMD code when it is compiled, not when it runs, so this, not the machine's CPU, is what a
+/// benchmark's figures were measured with (a portable SSE2 build on an AVX-512 machine runs SSE2
+/// code; docs/accel.md, "2026-12-06, fifteenth session").
+namespace penumbra {
+
+/// "AVX-512", "AVX2", "AVX", "SSE4.2", "SSE2", "NEON" or "scalar": the widest of these the target
+/// has.
+constexpr const char* compiled_vectors() {
+#if defined(__AVX512F__)
+  return "AVX-512";
+#elif defined(__AVX2__)
+  return "AVX2";
+#elif defined(__AVX__)
+  return "AVX";
+#elif defined(__SSE4_2__)
+  return "SSE4.2";
+#elif defined(__SSE2__)
+  return "SSE2";
+#elif defined(__ARM_NEON)
+  return "NEON";
+#else
+  return "scalar";
+#endif
+}
+
+}  // namespace penumbra
