@@ -107,9 +107,7 @@ const Registry<Factory>& registry() {
        "bvh whose closest-hit rays visit children in their octant's order, not by distance",
        create_bvh},
       {"bvh:spatial=0",
-       "bvh without spatial splits (object splits only, one reference per "
-       "triangle)",
-       create_bvh},
+       "bvh without spatial splits (object splits only, one reference per triangle)", create_bvh},
       {"bvh:optimize=0",
        "bvh without treelet restructuring (the binary tree as the binned SAH built it)",
        create_bvh},
