@@ -43,6 +43,35 @@ TEST_F(CliTest, HelpListsEverySubcommandAndRenderFlag) {
     EXPECT_NE(out_.find(flag), std::string::npos) << flag;
 }
 
+TEST_F(CliTest, ACpuWithoutTheBuildsExtensionsStopsTheProgramWithAMessage) {
+  // PENUMBRA_CPU_LACKS makes the start-up check (core/cpu_check.h) take the named extensions
+  // as missing; every x86-64 build uses SSE2.
+#if defined(__x86_64__)
+  const std::string out = path("out.png");
+  EXPECT_EQ(run("render " + scene("cornell-box.json") + " -o " + out + " --spp 1"), 0) << err_;
+  std::filesystem::remove(out);
+  const std::string env = "env PENUMBRA_CPU_LACKS=sse2,avx512f ";
+  const std::string cmd = std::string("sh -c '") + env + PENUMBRA_CLI + " render " +
+                          scene("cornell-box.json") + " -o " + out + " --spp 1'";
+  const int status = std::system((cmd + " > " + path("o.txt") + " 2> " + path("e.txt")).c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  const std::string err = slurp(path("e.txt"));
+  EXPECT_NE(err.find("penumbra: error: this program was compiled for instruction-set extensions "
+                     "that this CPU does not have: sse2"),
+            std::string::npos)
+      << err;
+#if defined(__AVX512F__)
+  EXPECT_NE(err.find("sse2, avx512f"), std::string::npos) << err;
+#endif
+  EXPECT_NE(err.find("-DPENUMBRA_NATIVE=OFF"), std::string::npos) << err;
+  EXPECT_TRUE(slurp(path("o.txt")).empty());
+  EXPECT_FALSE(std::filesystem::exists(out));
+#else
+  GTEST_SKIP() << "the check is for x86-64 builds";
+#endif
+}
+
 TEST_F(CliTest, SameSeedGivesIdenticalBytesAtAnyThreadCount) {
   const std::string common = scene("cornell-box.json") + " --resolution 64x48 --spp 3 ";
   ASSERT_EQ(run("render " + common + "--seed 9 --threads 1 -o " + path("a.pfm")), 0) << err_;
