@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <string>
 
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_builder.h"
@@ -17,6 +19,7 @@
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/rng.h"
+#include "penumbra/core/target.h"
 #include "test_scenes.h"
 
 namespace penumbra::test {
@@ -493,6 +496,42 @@ TEST(WideBvh, DistanceOrderVisitsTwoToSixteenChildrenNearestFirst) {
 // `bvh` without a width is 16-wide where the build targets AVX and 4-wide elsewhere (one SSE
 // register per row), with leaves of up to 16 and 8 triangles; the compressed nodes and the
 // octant order imply 8.
+TEST(Bvh, AnyHitOrderFollowsTheCpu) {
+  // anyhit=auto: the span order on Intel CPUs, the lane order on others; reported as the
+  // extra statistic "anyhit span" (1 or 0).
+  TriangleMesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.indices = {0, 1, 2};
+  PrimitiveSet prims;
+  prims.add_mesh(m, Transform(), 0);
+  const auto span_stat = [&](const std::string& spec) {
+    auto accel = make_accelerator(spec);
+    accel->build(prims);
+    for (const auto& [name, value] : accel->stats().extra)
+      if (name == "anyhit span") return value;
+    return -1.0;
+  };
+  for (const char* bvh : {"bvh", "bvh:width=4", "bvh:width=8", "bvh:width=16"}) {
+    SCOPED_TRACE(bvh);
+    EXPECT_EQ(span_stat(bvh), cpu_is_intel() ? 1.0 : 0.0);
+    EXPECT_EQ(span_stat(std::string(bvh) + (std::string(bvh) == "bvh" ? ":" : ",") + "anyhit=span"),
+              1.0);
+    EXPECT_EQ(
+        span_stat(std::string(bvh) + (std::string(bvh) == "bvh" ? ":" : ",") + "anyhit=lanes"),
+        0.0);
+  }
+#if defined(__x86_64__)
+  // This machine's vendor, read independently of __builtin_cpu_is from /proc/cpuinfo.
+  std::ifstream info("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(info, line))
+    if (line.rfind("vendor_id", 0) == 0) {
+      EXPECT_EQ(cpu_is_intel(), line.find("GenuineIntel") != std::string::npos) << line;
+      break;
+    }
+#endif
+}
+
 TEST(Bvh, DefaultWidthFollowsTheTarget) {
 #if defined(__AVX__)
   EXPECT_NE(dynamic_cast<const WideBvh<16>*>(make_accelerator("bvh").get()), nullptr);

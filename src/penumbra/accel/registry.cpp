@@ -89,7 +89,7 @@ const Registry<Factory>& registry() {
        "primitives, none above), order=distance|octant (8-wide: closest-hit rays visit "
        "children nearest first, or in their octant's order), anyhit=auto|span|lanes (the inner "
        "child an any-hit ray visits first when no leaf is hit: the longest span through its "
-       "box, or the lowest lane; auto: span on AVX-512 targets)",
+       "box, or the lowest lane; auto: span on Intel CPUs, lanes on others)",
        create_bvh},
       // Variants listed (name:params) so that `all` and the differential tests cover them.
       {"bvh:median", "bvh built by object-median splits (build=median)", create_bvh},

@@ -15,6 +15,7 @@
 #include "penumbra/accel/small_sort.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
+#include "penumbra/core/target.h"
 #include "penumbra/core/timer.h"
 #include "penumbra/geometry/float_error.h"
 
@@ -127,18 +128,15 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
   if (order == "octant" && W != 8)
     throw Error(fmt::format("{}: order=octant needs width 8", params.name()));
   octant_order_ = order == "octant";
-  // anyhit=auto: the span order where the target has AVX-512 (faster on the Intel Xeon
-  // measured), the lane order elsewhere (faster on the Zen 2 measured; docs/accel.md,
-  // "2026-12-05, tenth session").
+  // anyhit=auto: the span order on an Intel CPU (faster on the Intel Xeon measured, in its
+  // AVX-512 and in AVX2 code), the lane order on others (faster on the Zen 2 measured); which
+  // is faster depends on the core, not on the instruction set the code was compiled for
+  // (docs/accel.md, "2026-12-05, tenth session" and "2026-12-06, sixteenth session").
   const std::string anyhit = params.get_string("anyhit", "auto");
   if (anyhit != "auto" && anyhit != "span" && anyhit != "lanes")
     throw Error(fmt::format("{}: parameter 'anyhit' must be auto, span or lanes, got '{}'",
                             params.name(), anyhit));
-#if defined(__AVX512F__)
-  any_hit_span_ = anyhit != "lanes";
-#else
-  any_hit_span_ = anyhit == "span";
-#endif
+  any_hit_span_ = anyhit == "auto" ? cpu_is_intel() : anyhit == "span";
   const std::string interleave = params.get_string("interleave", "auto");
   if (interleave != "auto" && interleave != "on" && interleave != "off")
     throw Error(fmt::format("{}: parameter 'interleave' must be auto, on or off, got '{}'",
@@ -302,6 +300,7 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   stats_.extra = {{"width", double(W)}, {"sah_cost", sah_cost}};
   interleave_ = interleave_mode_ < 0 ? stats_.bytes > kInterleaveBytes : interleave_mode_ == 1;
   stats_.extra.emplace_back("interleaved batches", double(interleave_));
+  stats_.extra.emplace_back("anyhit span", double(any_hit_span_));
   if (best.optimized) {
     stats_.extra.emplace_back("treelets rewritten", double(best.treelets));
     stats_.extra.emplace_back("inner area before", best.area_before);

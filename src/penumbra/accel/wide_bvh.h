@@ -21,8 +21,8 @@
 /// exceeds 16 MiB, where the loads miss the caches); the 8-wide one also nodes=full|compressed (the
 /// node layout) and order=distance|octant (how closest-hit rays order the children they
 /// visit); anyhit=auto|span|lanes (which inner child an any-hit ray visits first when no leaf
-/// is hit: the longest span through its box, or the lowest lane; auto: span on AVX-512
-/// targets, lanes elsewhere).
+/// is hit: the longest span through its box, or the lowest lane; auto: span on Intel CPUs,
+/// lanes on others, chosen when the program runs).
 #include <string>
 #include <vector>
 

@@ -1,8 +1,8 @@
 #pragma once
-/// The vector instruction set the build's code was compiled for (`-march`). Penumbra chooses its
-/// SIMD code when it is compiled, not when it runs, so this, not the machine's CPU, is what a
-/// benchmark's figures were measured with (a portable SSE2 build on an AVX-512 machine runs SSE2
-/// code; docs/accel.md, "2026-12-06, fifteenth session").
+/// The vector instruction set the build's code was compiled for (`-march`), and the CPU's vendor.
+/// Penumbra chooses its SIMD code when it is compiled, not when it runs, so this, not the machine's
+/// CPU, is what a benchmark's figures were measured with (a portable SSE2 build on an AVX-512
+/// machine runs SSE2 code; docs/accel.md, "2026-12-06, fifteenth session").
 namespace penumbra {
 
 /// "AVX-512", "AVX2", "AVX", "SSE4.2", "SSE2", "NEON" or "scalar": the widest of these the target
@@ -22,6 +22,17 @@ constexpr const char* compiled_vectors() {
   return "NEON";
 #else
   return "scalar";
+#endif
+}
+
+/// True when the CPU running the program is Intel's (its CPUID vendor), false on other CPUs and
+/// other architectures. For choices that depend on the core rather than on the instruction set
+/// (`bvh:anyhit=auto`).
+inline bool cpu_is_intel() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __builtin_cpu_is("intel");
+#else
+  return false;
 #endif
 }
 
