@@ -12,6 +12,7 @@
 #include "penumbra/accel/build/binned_sah.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/build/bvh_split.h"
+#include "penumbra/accel/build/bvh_sweep.h"
 #include "penumbra/accel/build/prim_ref.h"
 #include "penumbra/accel/registry.h"
 #include "penumbra/core/error.h"
@@ -32,6 +33,30 @@ BinaryBvh build(const PrimitiveSet& prims, const std::string& spec) {
 /// The SAH cost of a split as the builders compute it, in float: area(L) N(L) + area(R) N(R).
 float split_cost(const Bounds3& l, size_t nl, const Bounds3& r, size_t nr) {
   return l.surface_area() * float(nl) + r.surface_area() * float(nr);
+}
+
+/// The least SAH cost over every object partition of `refs` in centroid order (centroid, then
+/// id) on the three axes, by brute force: boxes of each prefix and suffix joined directly, the
+/// sides' counts as the SAH's tests of blocks of 2^block_shift.
+float brute_force_best_partition(std::vector<PrimRef> refs, int block_shift = 0) {
+  const size_t count = refs.size();
+  float best = kInfinity;
+  for (int a = 0; a < 3; ++a) {
+    std::sort(refs.begin(), refs.end(), [a](const PrimRef& x, const PrimRef& y) {
+      const float cx = x.centroid2()[a], cy = y.centroid2()[a];
+      return cx < cy || (cx == cy && x.id < y.id);
+    });
+    std::vector<Bounds3> suffix(count + 1);
+    for (size_t i = count; i-- > 0;) suffix[i] = join(suffix[i + 1], refs[i].bounds());
+    Bounds3 prefix;
+    for (size_t i = 1; i < count; ++i) {
+      prefix.extend(refs[i - 1].bounds());
+      best = std::min(best,
+                      prefix.surface_area() * sah_tests(uint32_t(i), block_shift) +
+                          suffix[i].surface_area() * sah_tests(uint32_t(count - i), block_shift));
+    }
+  }
+  return best;
 }
 
 /// An inner node with the range of references under it.
@@ -194,22 +219,9 @@ TEST(BvhBuild, SweepSplitIsTheExactSahMinimumAtEveryNode) {
       const size_t left = under(n.index);
       const float chosen = split_cost(l.bounds(), left, r.bounds(), count - left);
       // Brute force over every prefix of every axis' centroid order.
-      float best = kInfinity;
+      const float best = brute_force_best_partition(refs);
       Bounds3 centroids;
       for (const PrimRef& p : refs) centroids.extend(p.centroid2());
-      for (int a = 0; a < 3; ++a) {
-        std::sort(refs.begin(), refs.end(), [a](const PrimRef& x, const PrimRef& y) {
-          const float cx = x.centroid2()[a], cy = y.centroid2()[a];
-          return cx < cy || (cx == cy && x.id < y.id);
-        });
-        std::vector<Bounds3> suffix(count + 1);
-        for (size_t i = count; i-- > 0;) suffix[i] = join(suffix[i + 1], refs[i].bounds());
-        Bounds3 prefix;
-        for (size_t i = 1; i < count; ++i) {
-          prefix.extend(refs[i - 1].bounds());
-          best = std::min(best, split_cost(prefix, i, suffix[i], count - i));
-        }
-      }
       EXPECT_EQ(chosen, best) << "node " << in.node << " of " << count << " references";
       // Binning with the default and with the most bins.
       for (int bins : {16, kMaxBins}) {
@@ -223,6 +235,63 @@ TEST(BvhBuild, SweepSplitIsTheExactSahMinimumAtEveryNode) {
     EXPECT_GT(checked, 10u);
     EXPECT_GT(binned_checked, checked);
   }
+}
+
+// exact=N: the binned build splits every node of at most N references by the exact SAH, the
+// least cost over all object partitions in centroid order (checked by brute force); larger
+// nodes stay binned. The direct call leaves the references in the chosen axis' order with the
+// left side first, and prefers counts that fill blocks when the SAH counts blocks.
+TEST(BvhBuild, ExactSplitOfSmallNodesIsTheSahMinimum) {
+  EXPECT_EQ(params_of("bvh:exact=64").exact_below, 64);
+  EXPECT_EQ(params_of("bvh").exact_below, 0);
+  EXPECT_THROW(params_of("bvh:exact=257"), Error);
+  EXPECT_THROW(params_of("bvh:exact=-1"), Error);
+  EXPECT_THROW(params_of("bvh:sweep,exact=8"), Error);
+  EXPECT_THROW(params_of("bvh:median,exact=8"), Error);
+  for (const TestScene& s : {random_soup(900, 51), room_with_boxes(14, 52), torus(14, 12)}) {
+    SCOPED_TRACE(s.name);
+    const BinaryBvh t = build(s.prims, "bvh:exact=48,leaf=4");
+    const auto inner = walk(t, 4);
+    size_t exact = 0, binned_cheaper_somewhere = 0;
+    for (const InnerNode& in : inner) {
+      const uint32_t count = in.end - in.begin;
+      if (count > 48 || in.depth >= size_t(kMaxSahDepth)) continue;
+      const BvhNode& n = t.nodes[in.node];
+      // The left child's references are the first ones of the range: its size is its range's.
+      const auto first_of = [&](auto&& self, uint32_t k) -> uint32_t {
+        const BvhNode& m = t.nodes[k];
+        return m.is_leaf() ? m.index + m.count : self(self, m.index + 1);
+      };
+      const uint32_t left = first_of(first_of, n.index) - in.begin;
+      const float chosen =
+          split_cost(t.nodes[n.index].bounds(), left, t.nodes[n.index + 1].bounds(), count - left);
+      std::vector<PrimRef> refs(t.refs.begin() + in.begin, t.refs.begin() + in.end);
+      EXPECT_EQ(chosen, brute_force_best_partition(refs)) << "node of " << count;
+      Bounds3 centroids;
+      for (const PrimRef& p : refs) centroids.extend(p.centroid2());
+      const SahSplit binned = find_binned_split(refs, BinMapping(centroids, 16), false);
+      binned_cheaper_somewhere += binned.axis >= 0 && binned.cost > chosen;
+      ++exact;
+    }
+    EXPECT_GT(exact, 20u);
+    EXPECT_GT(binned_cheaper_somewhere, 0u) << "the exact split differs from binning somewhere";
+  }
+  // 24 unit boxes in a row, blocks of eight: the cheapest partition fills blocks (8 | 16 or
+  // 16 | 8), which 16 bins over the centroids cannot separate exactly.
+  std::vector<PrimRef> row;
+  for (uint32_t i = 0; i < 24; ++i) {
+    const float x = float(23 - i);  // ids in the reverse of the x order
+    row.push_back(make_prim_ref(Bounds3{{x, 0, 0}, {x + 1, 1, 1}}, i));
+  }
+  const float best = brute_force_best_partition(row, 3);
+  const SahSplit split = find_exact_split(row, 3);
+  EXPECT_EQ(split.axis, 0);
+  EXPECT_EQ(split.cost, best);
+  EXPECT_EQ(split.left_count % 8, 0u) << split.left_count;
+  EXPECT_EQ(split.left_count + split.right_count, 24u);
+  for (size_t i = 0; i < row.size(); ++i) EXPECT_EQ(row[i].id, 23 - i) << "sorted along x";
+  EXPECT_EQ(split.left.hi.x, float(split.left_count));
+  EXPECT_EQ(split.right.lo.x, float(split.left_count));
 }
 
 // The binned builder skips binning a node that fits a leaf costing no more than a traversal

@@ -532,6 +532,26 @@ TEST(Bvh, AnyHitOrderFollowsTheCpu) {
 #endif
 }
 
+TEST(Bvh, SmallSetsSplitTheirSmallNodesExactly) {
+  // exact=auto: 64 where the 16-wide collapse merges leaves (sets of up to 2^16 primitives),
+  // none elsewhere. The wide SAH cost tells the trees apart.
+  const TestScene scene = random_soup(3000, 61);
+  const auto sah = [&](const std::string& spec) {
+    auto accel = make_accelerator(spec);
+    accel->build(scene.prims);
+    for (const auto& [name, value] : accel->stats().extra)
+      if (name == "sah_cost") return value;
+    return -1.0;
+  };
+  const double auto16 = sah("bvh:width=16"), exact16 = sah("bvh:width=16,exact=64"),
+               binned16 = sah("bvh:width=16,exact=0");
+  EXPECT_EQ(auto16, exact16);
+  EXPECT_NE(auto16, binned16);
+  EXPECT_EQ(sah("bvh:width=8"), sah("bvh:width=8,exact=0"));
+  EXPECT_NE(sah("bvh:width=8"), sah("bvh:width=8,exact=64"));
+  EXPECT_THROW(make_accelerator("bvh:exact=300"), Error);
+}
+
 TEST(Bvh, DefaultWidthFollowsTheTarget) {
 #if defined(__AVX__)
   EXPECT_NE(dynamic_cast<const WideBvh<16>*>(make_accelerator("bvh").get()), nullptr);

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <functional>
 #include <limits>
+#include <string>
 #include <vector>
 
 #include "penumbra/accel/build/bvh_builder.h"
@@ -20,11 +21,13 @@
 namespace penumbra::test {
 namespace {
 
-BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf, int block_shift = 2, int bins = 16) {
+BinaryBvh binary_tree(const PrimitiveSet& prims, int max_leaf, int block_shift = 2, int bins = 16,
+                      int exact_below = 0) {
   BvhBuildParams p;
   p.max_leaf = max_leaf;
   p.bins = bins;
   p.block_shift = block_shift;
+  p.exact_below = exact_below;
   return build_binary_bvh(make_prim_refs(prims), p);
 }
 
@@ -121,16 +124,20 @@ TEST(SahCollapse, FindsTheCheapestCollapseWithMergedLeaves) {
 }
 
 // The 16-wide structure with merged leaves reports the plan's cost for its binary tree (leaves
-// of up to 8, 32 bins).
+// of up to 8, 32 bins, nodes of up to 64 references split exactly: exact=auto).
 TEST(SahCollapse, MergedPlanCostIsTheBuiltTrees) {
   for (const auto& scene : {random_soup(3000, 3), torus(40, 30), room_with_boxes(30, 4)}) {
-    auto merged = make_accelerator("bvh:spatial=0,optimize=0,width=16,binleaf=8");
-    merged->build(scene.prims);
-    const double s = extra_stat(*merged, "sah_cost");
-    const BinaryBvh tree = binary_tree(scene.prims, 8, 3, 32);
-    const SahCollapse plan(tree.nodes, 16, 2.0f, 3, 16);
-    EXPECT_NEAR(plan.cost(), s, 1e-4 * s) << scene.name;
-    EXPECT_EQ(merged->stats().prim_refs, scene.prims.size()) << scene.name;
+    for (const int exact : {64, 0, 20}) {
+      const std::string spec = "bvh:spatial=0,optimize=0,width=16,binleaf=8" +
+                               (exact == 64 ? std::string() : ",exact=" + std::to_string(exact));
+      auto merged = make_accelerator(spec);
+      merged->build(scene.prims);
+      const double s = extra_stat(*merged, "sah_cost");
+      const BinaryBvh tree = binary_tree(scene.prims, 8, 3, 32, exact);
+      const SahCollapse plan(tree.nodes, 16, 2.0f, 3, 16);
+      EXPECT_NEAR(plan.cost(), s, 1e-4 * s) << scene.name << " " << spec;
+      EXPECT_EQ(merged->stats().prim_refs, scene.prims.size()) << scene.name;
+    }
   }
 }
 

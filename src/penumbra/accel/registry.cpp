@@ -79,7 +79,9 @@ const Registry<Factory>& registry() {
       {"bvh",
        "BVH, binned SAH build, width=16 on AVX targets, else 4 (SIMD wide nodes; 8, or 2 "
        "for binary), leaf=16 for width 16, else 8, bins=32 for width 16, else 16, "
-       "trav=2, build=binned|median|sweep, collapse=sah|greedy, nodes=full|compressed (8-wide: "
+       "trav=2, build=binned|median|sweep, exact=auto (binned: nodes of up to N references, "
+       "N <= 256, split by the exact SAH; auto: 64 for width 16 over sets of up to 2^16 "
+       "primitives, else 0), collapse=sah|greedy, nodes=full|compressed (8-wide: "
        "float boxes, 256 bytes, or byte planes, 128 bytes), presplit=0 (up to F x the triangles "
        "as extra references for large triangles, F in [0, 4]), spatial=1 (SBVH spatial splits: "
        "up to F x the triangles as extra references, F in [0, 4], binned builds of static "

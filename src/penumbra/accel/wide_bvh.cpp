@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "penumbra/accel/build/bvh_sweep.h"
 #include "penumbra/accel/build/presplit.h"
 #include "penumbra/accel/build/treelet_opt.h"
 #include "penumbra/accel/build/wide_collapse.h"
@@ -107,6 +108,7 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
   // bins=N given: the 16-wide tree's default of 32 does not apply (build()).
   bins_given_ = params.has("bins");
+  exact_below_ = params.has("exact") ? params_.exact_below : -1;
   // binleaf=auto: 8 in the 16-wide tree over sets of up to kMergeBelow primitives, where the
   // traversal waits on arithmetic more than on memory; no merging elsewhere. The greedy
   // collapse does not merge: rejected rather than ignored.
@@ -194,6 +196,11 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
                                                                   : 0;
     const bool merge = sah_collapse_ && bin_leaf > 0 && bin_leaf < bp.max_leaf;
     if (merge) bin_params.max_leaf = bin_leaf;
+    // exact=auto: where leaves merge (the small sets), nodes of up to 64 references are split
+    // by the exact SAH rather than by bins, whose boundaries cannot make a side's count fill
+    // its blocks (the bunny's incoherent rays +2 %, human_blend's +2 %; exact at every level
+    // gave the bunny +4 % and human_blend -2 %; docs/accel.md, "2026-12-06, sixteenth session").
+    if (merge && exact_below_ < 0) bin_params.exact_below = 64;
     // The 16-wide tree bins with 32 bins unless bins=N says otherwise: the finer splits lower
     // the wide SAH cost (the bunny 9.60 -> 9.41, spheres-1m 20.48 -> 20.30; incoherent rays +2 %
     // on the bunny, human_blend and spheres-1m, camera rays +1-2 % on spheres-1m). Above

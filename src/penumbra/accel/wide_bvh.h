@@ -9,20 +9,21 @@
 /// binary tree's dependent node fetches. Children are visited nearest first.
 ///
 /// Parameters: leaf=N, the largest leaf (default 8; 16 for width 16), bins=N (default 16; 32 for
-/// width 16), trav=X (default 2); collapse=sah|greedy (the SAH-optimal collapse of
-/// build/wide_collapse.h, the default, or largest-area opening); binleaf=N|auto (with collapse=sah
-/// and N below leaf, the binary build stops at leaves of N and the collapse may merge a subtree of
-/// up to `leaf` references into one leaf where the SAH says so; 0: no merging; auto, the default: 8
-/// for width 16 over sets of up to 2^16 primitives, no merging otherwise); optimize=N|auto (passes
-/// of treelet restructuring over the binary tree before the collapse, build/treelet_opt.h; auto,
-/// the default: one for sets of up to 2^18 primitives, none above); interleave=auto|on|off (whether
-/// batch queries, intersect_batch and occluded_batch, alternate between 8 rays' traversals a node
-/// at a time, so that each ray's next node loads while the others work; auto: when the structure
-/// exceeds 16 MiB, where the loads miss the caches); the 8-wide one also nodes=full|compressed (the
-/// node layout) and order=distance|octant (how closest-hit rays order the children they
-/// visit); anyhit=auto|span|lanes (which inner child an any-hit ray visits first when no leaf
-/// is hit: the longest span through its box, or the lowest lane; auto: span on Intel CPUs,
-/// lanes on others, chosen when the program runs).
+/// width 16), trav=X (default 2), exact=N|auto (nodes of up to N references split by the exact
+/// SAH, bvh_sweep.h; auto, the default: 64 where binleaf merges, else 0); collapse=sah|greedy (the
+/// SAH-optimal collapse of build/wide_collapse.h, the default, or largest-area opening);
+/// binleaf=N|auto (with collapse=sah and N below leaf, the binary build stops at leaves of N and
+/// the collapse may merge a subtree of up to `leaf` references into one leaf where the SAH says so;
+/// 0: no merging; auto, the default: 8 for width 16 over sets of up to 2^16 primitives, no merging
+/// otherwise); optimize=N|auto (passes of treelet restructuring over the binary tree before the
+/// collapse, build/treelet_opt.h; auto, the default: one for sets of up to 2^18 primitives, none
+/// above); interleave=auto|on|off (whether batch queries, intersect_batch and occluded_batch,
+/// alternate between 8 rays' traversals a node at a time, so that each ray's next node loads while
+/// the others work; auto: when the structure exceeds 16 MiB, where the loads miss the caches); the
+/// 8-wide one also nodes=full|compressed (the node layout) and order=distance|octant (how
+/// closest-hit rays order the children they visit); anyhit=auto|span|lanes (which inner child an
+/// any-hit ray visits first when no leaf is hit: the longest span through its box, or the lowest
+/// lane; auto: span on Intel CPUs, lanes on others, chosen when the program runs).
 #include <string>
 #include <vector>
 
@@ -100,6 +101,7 @@ class WideBvh final : public Accelerator {
   bool sah_collapse_ = true;  ///< collapse=sah (default): the SAH-optimal collapse, else greedy
   double presplit_ = 0;        ///< presplit=F: extra references for large triangles (presplit.h)
   bool bins_given_ = false;    ///< bins=N given (else the 16-wide tree uses 32)
+  int exact_below_ = -1;       ///< exact=N given (else auto: 64 where leaves merge, else 0)
   /// binleaf=N: the binary build's leaf size when the collapse merges (0: none); -1: auto
   int bin_leaf_ = -1;
   int optimize_ = -1;  ///< optimize=N: treelet restructuring passes (treelet_opt.h); -1: auto

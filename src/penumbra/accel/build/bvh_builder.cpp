@@ -53,7 +53,11 @@ struct BinnedSplitter {
     // Fewer bins for small nodes: the sweep costs O(bins) whatever the node size.
     const int bins = n < kFewBinsBelow && p.few_bins > 0 ? std::min(p.bins, p.few_bins) : p.bins;
     BinMapping map(centroids, std::min(bins, std::max(4, int(n))));
-    if (depth < kMaxSahDepth)
+    // Small nodes: the exact SAH, which leaves [b, e) sorted along its axis, left side first.
+    const bool exact = n <= uint32_t(p.exact_below) && depth < kMaxSahDepth;
+    if (exact)
+      split = find_exact_split({refs + b, n}, p.block_shift);
+    else if (depth < kMaxSahDepth)
       split = find_binned_split({refs + b, n}, map, n >= p.parallel_min, p.block_shift);
     // A spatial split where the object split's children overlap (or none separates them) and
     // the node has room for more references.
@@ -101,8 +105,14 @@ struct BinnedSplitter {
     }
     NodeSplit s;
     s.room = room;
-    s.mid = b + uint32_t(
-                    partition_refs({refs + b, n}, map, split, s.left_centroids, s.right_centroids));
+    if (exact) {
+      s.mid = b + split.left_count;
+      for (uint32_t i = b; i < e; ++i)
+        (i < s.mid ? s.left_centroids : s.right_centroids).extend(refs[i].centroid2());
+    } else {
+      s.mid = b + uint32_t(partition_refs({refs + b, n}, map, split, s.left_centroids,
+                                          s.right_centroids));
+    }
     s.left = split.left, s.right = split.right;
     return s;
   }
@@ -324,6 +334,9 @@ BvhBuildParams read_bvh_build_params(const ParamList& params, int default_leaf) 
     throw Error(
         fmt::format("{}: parameter 'trav' does not apply to build=median (no SAH)", params.name()));
   p.bins = int(params.get_int("bins", p.bins, 2, kMaxBins));
+  if (p.method != BvhSplitMethod::kBinned && params.has("exact"))
+    throw Error(fmt::format("{}: parameter 'exact' applies only to build=binned", params.name()));
+  p.exact_below = int(params.get_int("exact", p.exact_below, 0, kMaxExactSplit));
   p.traversal_cost = float(params.get_real("trav", p.traversal_cost, 0.0, 100.0));
   return p;
 }

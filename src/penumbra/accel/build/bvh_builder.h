@@ -29,6 +29,9 @@ struct BvhBuildParams {
   /// (the many small nodes of a large set are most of its binning time).
   int few_bins = 0;
   int max_leaf = 8;                                 ///< most references in one leaf
+  /// Binned builds split nodes of at most this many references (at most kMaxExactSplit) by the
+  /// exact SAH over every partition in centroid order (find_exact_split); 0: every node binned.
+  int exact_below = 0;
   float traversal_cost = 2.0f;  ///< cost of an inner node relative to one primitive test
   /// Leaves are tested 2^block_shift primitives at a time (SIMD blocks); the SAH counts blocks.
   int block_shift = 0;
@@ -44,7 +47,8 @@ struct BvhBuildParams {
 };
 
 /// Reads build=binned|median|sweep (or the bare word), leaf=N (1..64), bins=N (2..kMaxBins, binned
-/// only) and trav=X (0..100, not for median) from `params`, the defaults being those of
+/// only), exact=N (0..kMaxExactSplit, binned only) and trav=X (0..100, not for median) from
+/// `params`, the defaults being those of
 /// BvhBuildParams but for leaf's, `default_leaf`; throws Error on bad values. Unused keys are left
 /// for the caller.
 BvhBuildParams read_bvh_build_params(const ParamList& params, int default_leaf = 8);

@@ -20,6 +20,18 @@
 
 namespace penumbra {
 
+/// The most references find_exact_split() takes.
+inline constexpr uint32_t kMaxExactSplit = 256;
+
+/// The exact SAH split of a small node (at most kMaxExactSplit references, at least 2): every
+/// partition of `refs` in centroid order along each axis (centroid, then id: a total order), as
+/// the sweep below evaluates them, but sorted for this node alone. The binned build takes it for
+/// its small nodes (`exact=N`): bins cannot put a boundary at an exact count, and the SAH of
+/// blocks (`block_shift`) prefers children whose counts fill their blocks. Leaves `refs` in the
+/// order of the chosen axis, its first `left_count` references forming the left side; `pos`
+/// is left_count too. Ties keep the lower axis and the fewer references on the left.
+SahSplit find_exact_split(std::span<PrimRef> refs, int block_shift);
+
 /// The split strategy of `bvh:sweep`, called by the top-down builder once per node.
 class SweepSahSplitter {
  public:
