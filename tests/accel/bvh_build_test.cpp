@@ -244,6 +244,7 @@ TEST(BvhBuild, SweepSplitIsTheExactSahMinimumAtEveryNode) {
 TEST(BvhBuild, ExactSplitOfSmallNodesIsTheSahMinimum) {
   EXPECT_EQ(params_of("bvh:exact=64").exact_below, 64);
   EXPECT_EQ(params_of("bvh").exact_below, 0);
+  EXPECT_EQ(params_of("bvh:exact=auto").exact_below, 0);
   EXPECT_THROW(params_of("bvh:exact=257"), Error);
   EXPECT_THROW(params_of("bvh:exact=-1"), Error);
   EXPECT_THROW(params_of("bvh:sweep,exact=8"), Error);

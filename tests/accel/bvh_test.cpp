@@ -546,6 +546,7 @@ TEST(Bvh, SmallSetsSplitTheirSmallNodesExactly) {
   const double auto16 = sah("bvh:width=16"), exact16 = sah("bvh:width=16,exact=64"),
                binned16 = sah("bvh:width=16,exact=0");
   EXPECT_EQ(auto16, exact16);
+  EXPECT_EQ(auto16, sah("bvh:width=16,exact=auto"));
   EXPECT_NE(auto16, binned16);
   EXPECT_EQ(sah("bvh:width=8"), sah("bvh:width=8,exact=0"));
   EXPECT_NE(sah("bvh:width=8"), sah("bvh:width=8,exact=64"));

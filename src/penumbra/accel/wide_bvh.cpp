@@ -108,7 +108,7 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
   presplit_ = params.get_real("presplit", 0.0, 0.0, 4.0);
   // bins=N given: the 16-wide tree's default of 32 does not apply (build()).
   bins_given_ = params.has("bins");
-  exact_below_ = params.has("exact") ? params_.exact_below : -1;
+  exact_below_ = params.get_string("exact", "auto") == "auto" ? -1 : params_.exact_below;
   // binleaf=auto: 8 in the 16-wide tree over sets of up to kMergeBelow primitives, where the
   // traversal waits on arithmetic more than on memory; no merging elsewhere. The greedy
   // collapse does not merge: rejected rather than ignored.

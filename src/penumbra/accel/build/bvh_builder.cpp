@@ -336,7 +336,9 @@ BvhBuildParams read_bvh_build_params(const ParamList& params, int default_leaf) 
   p.bins = int(params.get_int("bins", p.bins, 2, kMaxBins));
   if (p.method != BvhSplitMethod::kBinned && params.has("exact"))
     throw Error(fmt::format("{}: parameter 'exact' applies only to build=binned", params.name()));
-  p.exact_below = int(params.get_int("exact", p.exact_below, 0, kMaxExactSplit));
+  // exact=auto leaves the default: the caller's choice (WideBvh's depends on the set).
+  if (params.get_string("exact", "auto") != "auto")
+    p.exact_below = int(params.get_int("exact", p.exact_below, 0, kMaxExactSplit));
   p.traversal_cost = float(params.get_real("trav", p.traversal_cost, 0.0, 100.0));
   return p;
 }

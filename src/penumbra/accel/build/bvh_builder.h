@@ -47,10 +47,9 @@ struct BvhBuildParams {
 };
 
 /// Reads build=binned|median|sweep (or the bare word), leaf=N (1..64), bins=N (2..kMaxBins, binned
-/// only), exact=N (0..kMaxExactSplit, binned only) and trav=X (0..100, not for median) from
-/// `params`, the defaults being those of
-/// BvhBuildParams but for leaf's, `default_leaf`; throws Error on bad values. Unused keys are left
-/// for the caller.
+/// only), exact=N|auto (0..kMaxExactSplit, binned only; auto keeps the default) and trav=X (0..100,
+/// not for median) from `params`, the defaults being those of BvhBuildParams but for leaf's,
+/// `default_leaf`; throws Error on bad values. Unused keys are left for the caller.
 BvhBuildParams read_bvh_build_params(const ParamList& params, int default_leaf = 8);
 
 /// A built binary BVH. nodes[0] is the root and nodes[1] is padding, so that every pair of
