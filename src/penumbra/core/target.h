@@ -1,8 +1,9 @@
 #pragma once
-/// The vector instruction set the build's code was compiled for (`-march`), and the CPU's vendor.
-/// Penumbra chooses its SIMD code when it is compiled, not when it runs, so this, not the machine's
-/// CPU, is what a benchmark's figures were measured with (a portable SSE2 build on an AVX-512
-/// machine runs SSE2 code; docs/accel.md, "2026-12-06, fifteenth session").
+/// What the code was compiled for and what it runs on. Penumbra chooses its SIMD code when it is
+/// compiled, not when it runs, so compiled_vectors(), not the machine's CPU, is what a benchmark's
+/// figures were measured with (a portable SSE2 build on an AVX-512 machine runs SSE2 code;
+/// docs/accel.md, "2026-12-06, fifteenth session"); cpu_is_intel() is for the few defaults that
+/// depend on the core that runs the program.
 namespace penumbra {
 
 /// "AVX-512", "AVX2", "AVX", "SSE4.2", "SSE2", "NEON" or "scalar": the widest of these the target

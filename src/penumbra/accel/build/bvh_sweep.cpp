@@ -35,30 +35,29 @@ SahSplit find_exact_split(std::span<PrimRef> refs, int block_shift) {
   const auto n = uint32_t(refs.size());
   SahSplit best;
   if (n < 2 || n > kMaxExactSplit) return best;
-  PrimRef sorted[kMaxExactSplit];
+  const auto sort_along = [&](int axis) {
+    std::sort(refs.begin(), refs.end(),
+              [axis](const PrimRef& x, const PrimRef& y) { return before(x, y, axis); });
+  };
   float right[kMaxExactSplit];
   for (int axis = 0; axis < 3; ++axis) {
-    std::copy(refs.begin(), refs.end(), sorted);
-    std::sort(sorted, sorted + n,
-              [axis](const PrimRef& x, const PrimRef& y) { return before(x, y, axis); });
+    sort_along(axis);  // in place: the last axis' order stays if it is the best
     // From the right: right[i] = area of the box of [i, n).
     BoxAccumulator acc;
     for (uint32_t i = n - 1; i > 0; --i) {
-      acc.add(&sorted[i].lo.x, &sorted[i].hi.x);
+      acc.add(&refs[i].lo.x, &refs[i].hi.x);
       right[i] = acc.area();
     }
     // From the left: the cost of [0, i) | [i, n).
     acc = BoxAccumulator();
     for (uint32_t i = 1; i < n; ++i) {
-      acc.add(&sorted[i - 1].lo.x, &sorted[i - 1].hi.x);
+      acc.add(&refs[i - 1].lo.x, &refs[i - 1].hi.x);
       const float cost =
           acc.area() * sah_tests(i, block_shift) + right[i] * sah_tests(n - i, block_shift);
       if (best.axis < 0 || cost < best.cost) best.axis = axis, best.cost = cost, best.pos = int(i);
     }
   }
-  const int axis = best.axis;
-  std::sort(refs.begin(), refs.end(),
-            [axis](const PrimRef& x, const PrimRef& y) { return before(x, y, axis); });
+  if (best.axis != 2) sort_along(best.axis);
   best.left_count = uint32_t(best.pos), best.right_count = n - best.left_count;
   BoxAccumulator left, right_box;
   for (uint32_t i = 0; i < n; ++i)
