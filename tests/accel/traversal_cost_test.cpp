@@ -58,6 +58,37 @@ TEST_P(TraversalCostTest, CountingReturnsTheSameHitAsIntersect) {
   }
 }
 
+// The any-hit count returns occluded's answer. A ray that hits nothing visits, in any order,
+// every node and primitive on its interval: its counts are then those of the closest-hit query.
+// A ray that hits stops at some hit, having reached a leaf and tested a primitive. (Fewer tests
+// than the closest-hit query's is no rule: the BSP tree tests the polygons in a plane before
+// the near child, where the closest-hit query defers them.)
+TEST_P(TraversalCostTest, AnyHitCountingReturnsOccludedsAnswer) {
+  for (const TestScene& scene : {random_soup(2000, 41), mixed_shapes(42)}) {
+    auto accel = make_accelerator(GetParam());
+    accel->build(scene.prims);
+    const std::vector<Ray> rays = mixed_rays(scene.prims, 20'000, 43);
+    size_t misses = 0;
+    for (const Ray& ray : rays) {
+      TraversalCost any, closest;
+      const bool blocked = accel->occluded_cost(ray, any);
+      ASSERT_EQ(blocked, accel->occluded(ray)) << scene.name;
+      Hit hit;
+      ASSERT_EQ(accel->intersect_cost(ray, hit, closest), blocked) << scene.name;
+      if (blocked) {
+        EXPECT_GE(any.prims, 1u);
+        EXPECT_GE(any.nodes, 1u);
+      } else {
+        ASSERT_EQ(any.nodes, closest.nodes) << scene.name;
+        ASSERT_EQ(any.prims, closest.prims) << scene.name;
+        ++misses;
+      }
+    }
+    EXPECT_GT(misses, rays.size() / 10) << scene.name;
+    EXPECT_LT(misses, rays.size() * 9 / 10) << scene.name;
+  }
+}
+
 // Every structure tests fewer primitives per ray than brute force does, on a scene where that
 // is the point of having a structure: 20,000 small triangles.
 TEST_P(TraversalCostTest, TestsFarFewerPrimitivesThanBruteForce) {
@@ -98,7 +129,29 @@ TEST(TraversalCost, BruteForceCountsEveryPrimitiveOnce) {
   TraversalCost c;
   Hit hit;
   EXPECT_FALSE(brute->intersect_cost(bad, hit, c));
+  EXPECT_FALSE(brute->occluded_cost(bad, c));
   EXPECT_EQ(c.nodes + c.prims, 0u);
+}
+
+// Brute force's any-hit query tests the primitives in order up to the first one in the way: as
+// many as the index of the first primitive a ray hits on its own, plus one, or all of them.
+TEST(TraversalCost, BruteForceAnyHitStopsAtTheFirstPrimitiveInTheWay) {
+  const TestScene scene = random_soup(300, 46);
+  auto brute = make_accelerator("brute");
+  brute->build(scene.prims);
+  size_t stopped_early = 0;
+  for (const Ray& ray : mixed_rays(scene.prims, 200, 47)) {
+    const PreparedRay pr(ray);
+    uint32_t first = uint32_t(scene.prims.size());
+    for (uint32_t id = 0; id < scene.prims.size() && first == scene.prims.size(); ++id)
+      if (scene.prims.occludes(id, pr)) first = id;
+    TraversalCost c;
+    EXPECT_EQ(brute->occluded_cost(ray, c), first < scene.prims.size());
+    EXPECT_EQ(c.nodes, 1u);
+    EXPECT_EQ(c.prims, std::min<uint64_t>(first + 1, scene.prims.size()));
+    stopped_early += first + 1 < scene.prims.size();
+  }
+  EXPECT_GT(stopped_early, 10u);
 }
 
 // The binary BVH over three triangles: a ray through one's box counts a node and at least that

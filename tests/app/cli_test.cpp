@@ -381,17 +381,25 @@ TEST_F(CliTest, AccelBenchRepeatsAndPairsRunsWithEmbree) {
         EXPECT_GT(r[key].get<double>(), 0.0) << key;
       }
     }
-    // The structure's own counts per incoherent ray (not Embree's, which does not count).
+    // The structure's own counts per ray of each set (not Embree's, which does not count); the
+    // incoherent set's also as nodes_per_ray and prims_per_ray.
     const bool ours = row["accel"] != "embree";
     EXPECT_EQ(row.contains("nodes_per_ray"), ours) << row.dump();
     EXPECT_EQ(row.contains("prims_per_ray"), ours) << row.dump();
+    EXPECT_EQ(row.contains("per_ray"), ours) << row.dump();
     if (ours) {
-      EXPECT_GT(row["nodes_per_ray"].get<double>(), 0.0);
-      EXPECT_GT(row["prims_per_ray"].get<double>(), 0.0);
-      EXPECT_LE(row["prims_per_ray"].get<double>(), 38.0);  // the box's 38 triangles at most
+      EXPECT_EQ(row["nodes_per_ray"], row["per_ray"]["incoherent"]["nodes"]);
+      EXPECT_EQ(row["prims_per_ray"], row["per_ray"]["incoherent"]["prims"]);
+      for (const char* set : {"primary", "incoherent", "occlusion", "bounce", "shadow"}) {
+        const auto& c = row["per_ray"][set];
+        EXPECT_GT(c["nodes"].get<double>(), 0.0) << set;
+        EXPECT_GT(c["prims"].get<double>(), 0.0) << set;
+        EXPECT_LE(c["prims"].get<double>(), 38.0) << set;  // the box's 38 triangles at most
+      }
     }
   }
-  EXPECT_NE(out_.find("per incoherent ray:"), std::string::npos) << out_;
+  EXPECT_NE(out_.find("per ray, nodes visited / primitive tests: primary"), std::string::npos)
+      << out_;
   for (const char* bad : {"0", "x", "101"})
     EXPECT_NE(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --repeat " + bad), 0)
         << bad;

@@ -66,6 +66,9 @@ class Accelerator {
   /// intersect, adding to `cost` the nodes it visited and the primitives it tested (the same
   /// traversal as intersect, instantiated with counting; intersect itself counts nothing).
   virtual bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const = 0;
+  /// occluded, adding to `cost` the nodes it visited and the primitives it tested (as
+  /// intersect_cost; the any-hit order of the structure, stopping at the first hit found).
+  virtual bool occluded_cost(const Ray& ray, TraversalCost& cost) const = 0;
   /// Statistics of the last build.
   virtual AccelStats stats() const = 0;
 };

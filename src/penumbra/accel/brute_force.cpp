@@ -39,6 +39,17 @@ bool BruteForce::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) c
   return hit.valid();
 }
 
+bool BruteForce::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray)) return false;
+  const PreparedRay pr(ray);
+  cost.nodes += 1;  // the one "leaf", tested up to the first primitive in the way
+  for (uint32_t id : valid_) {
+    cost.prims += 1;
+    if (prims_->occludes(id, pr)) return true;
+  }
+  return false;
+}
+
 bool BruteForce::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   const PreparedRay pr(ray);

@@ -232,6 +232,15 @@ bool BspTree::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) cons
   return tris_.empty() ? traverse<false, false>(pr, hit, c) : traverse<false, true>(pr, hit, c);
 }
 
+bool BspTree::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray) || tree_.nodes.empty()) return false;
+  Hit hit;
+  hit.t = ray.tmax;
+  const PreparedRay pr(ray);
+  const CostCounter c{&cost};
+  return tris_.empty() ? traverse<true, false>(pr, hit, c) : traverse<true, true>(pr, hit, c);
+}
+
 bool BspTree::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   if (tree_.nodes.empty()) return false;

@@ -41,6 +41,7 @@ class BspTree final : public Accelerator {
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
   bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
+  bool occluded_cost(const Ray& ray, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
 
   /// The nodes, root at 0 (empty when nothing was built).

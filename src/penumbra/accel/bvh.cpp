@@ -58,6 +58,15 @@ bool Bvh::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const {
   return leaf_.triangles() ? traverse<false, true>(pr, hit, c) : traverse<false, false>(pr, hit, c);
 }
 
+bool Bvh::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray) || nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  Hit hit;
+  hit.t = ray.tmax;
+  const CostCounter c{&cost};
+  return leaf_.triangles() ? traverse<true, true>(pr, hit, c) : traverse<true, false>(pr, hit, c);
+}
+
 bool Bvh::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;

@@ -307,6 +307,15 @@ bool KdTree::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const
                              : traverse<false, true>(pr, hit, c);
 }
 
+bool KdTree::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray) || nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  Hit hit;
+  hit.t = ray.tmax;
+  const CostCounter c{&cost};
+  return blocks_.size() == 0 ? traverse<true, false>(pr, hit, c) : traverse<true, true>(pr, hit, c);
+}
+
 bool KdTree::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;

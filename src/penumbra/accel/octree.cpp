@@ -422,6 +422,13 @@ bool Octree::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const
   return dispatch<false>(PreparedRay(ray), hit, CostCounter{&cost});
 }
 
+bool Octree::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray) || nodes_.empty()) return false;
+  Hit hit;
+  hit.t = ray.tmax;
+  return dispatch<true>(PreparedRay(ray), hit, CostCounter{&cost});
+}
+
 bool Octree::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;

@@ -354,6 +354,13 @@ bool UniformGrid::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) 
   return dispatch<false>(PreparedRay(ray), hit, CostCounter{&cost});
 }
 
+bool UniformGrid::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray) || ids_.empty()) return false;
+  Hit hit;
+  hit.t = ray.tmax;
+  return dispatch<true>(PreparedRay(ray), hit, CostCounter{&cost});
+}
+
 bool UniformGrid::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   if (ids_.empty()) return false;

@@ -758,6 +758,16 @@ bool WideBvh<W, Node>::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& c
 }
 
 template <int W, class Node>
+bool WideBvh<W, Node>::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray) || nodes_.empty()) return false;
+  const PreparedRay pr(ray);
+  Hit hit;
+  hit.t = ray.tmax;
+  const CostCounter c{&cost};
+  return blocks_.size() ? traverse<true, true>(pr, hit, c) : traverse<true, false>(pr, hit, c);
+}
+
+template <int W, class Node>
 bool WideBvh<W, Node>::occluded(const Ray& ray) const {
   if (!traceable(ray)) return false;
   if (nodes_.empty()) return false;

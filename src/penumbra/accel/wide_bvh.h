@@ -51,6 +51,7 @@ class WideBvh final : public Accelerator {
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
   bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const override;
+  bool occluded_cost(const Ray& ray, TraversalCost& cost) const override;
   AccelStats stats() const override { return stats_; }
   /// Incoherent batches with interleaving on alternate between their rays' traversals, a node
   /// at a time (interleave()); the others go one ray at a time.

@@ -527,16 +527,24 @@ void run_accel_bench(const AccelBenchArgs& args) {
         },
         args.batch);
     measure(row, rays, threads, args.repeat, side, embree ? &embree_side : nullptr, nullptr);
-    // The structure's own counts over the incoherent rays (a separate, untimed pass).
-    std::vector<TraversalCost> costs(rays.incoherent.size());
-    parallel_for(costs.size(), [&](size_t i) {
-      Hit h;
-      accel->intersect_cost(rays.incoherent[i], h, costs[i]);
-    });
-    TraversalCost total;
-    for (const TraversalCost& c : costs) total += c;
-    const double n = double(std::max<size_t>(1, costs.size()));
-    row.nodes_per_ray = double(total.nodes) / n, row.prims_per_ray = double(total.prims) / n;
+    // The structure's own counts over each ray set (a separate, untimed pass).
+    const auto counts = [&](const std::vector<Ray>& set, bool any_hit) {
+      std::vector<TraversalCost> costs(set.size());
+      parallel_for(costs.size(), [&](size_t i) {
+        Hit h;
+        if (any_hit)
+          accel->occluded_cost(set[i], costs[i]);
+        else
+          accel->intersect_cost(set[i], h, costs[i]);
+      });
+      TraversalCost total;
+      for (const TraversalCost& c : costs) total += c;
+      const double n = double(std::max<size_t>(1, costs.size()));
+      return RayCounts{double(total.nodes) / n, double(total.prims) / n};
+    };
+    row.counts = BenchCounts{counts(rays.primary, false), counts(rays.incoherent, false),
+                             counts(rays.incoherent, true), counts(rays.path.bounce, false),
+                             counts(rays.path.shadow, true)};
     rows.push_back(row);
     accel.reset();  // free its memory before the next build
   }

@@ -99,13 +99,19 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
             o.bounce, o.shadow, o.through_embree ? "their ratios to Embree" : "their rates");
       }
     }
-  // The structures' own counts of the incoherent queries.
+  // The structures' own counts of each set's queries.
   for (const BenchRow& r : rows)
-    if (r.nodes_per_ray) {
+    if (r.counts) {
+      const BenchCounts& c = *r.counts;
       std::string figures;
       for (const auto& [key, value] : r.extra) figures += fmt::format("; {} {:g}", key, value);
-      fmt::print("{:<22} per incoherent ray: {:.1f} nodes visited, {:.1f} primitive tests{}\n",
-                 r.accel, *r.nodes_per_ray, r.prims_per_ray.value_or(0), figures);
+      fmt::print(
+          "{:<22} per ray, nodes visited / primitive tests: primary {:.1f} / {:.1f}, incoherent "
+          "{:.1f} / {:.1f}, occlusion {:.1f} / {:.1f}, bounce {:.1f} / {:.1f}, shadow {:.1f} / "
+          "{:.1f}{}\n",
+          r.accel, c.primary.nodes, c.primary.prims, c.incoherent.nodes, c.incoherent.prims,
+          c.occlusion.nodes, c.occlusion.prims, c.bounce.nodes, c.bounce.prims, c.shadow.nodes,
+          c.shadow.prims, figures);
     }
   fmt::print(
       "(build ms at {} and Mrays/s: medians of {} run(s); refs/prim: leaf references per "
@@ -181,8 +187,18 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
     if (r.refs_per_prim) o["refs_per_prim"] = *r.refs_per_prim;
     if (r.mismatches) o["embree_mismatches"] = *r.mismatches;
     if (r.ties) o["embree_ties"] = *r.ties;
-    if (r.nodes_per_ray) o["nodes_per_ray"] = *r.nodes_per_ray;
-    if (r.prims_per_ray) o["prims_per_ray"] = *r.prims_per_ray;
+    if (r.counts) {
+      const BenchCounts& c = *r.counts;
+      o["nodes_per_ray"] = c.incoherent.nodes, o["prims_per_ray"] = c.incoherent.prims;
+      nlohmann::json per_ray;
+      for (const auto& [key, set] : {std::pair{"primary", c.primary},
+                                     {"incoherent", c.incoherent},
+                                     {"occlusion", c.occlusion},
+                                     {"bounce", c.bounce},
+                                     {"shadow", c.shadow}})
+        per_ray[key] = {{"nodes", set.nodes}, {"prims", set.prims}};
+      o["per_ray"] = per_ray;
+    }
     for (const auto& [key, value] : r.extra) o[key] = value;
     out.push_back(o);
   }

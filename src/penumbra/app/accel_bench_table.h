@@ -21,6 +21,16 @@ struct BenchRates {
       bounce_vs_embree, shadow_vs_embree;
 };
 
+/// Node records visited and primitive tests per query of one ray set.
+struct RayCounts {
+  double nodes = 0, prims = 0;
+};
+
+/// The counts of the five ray sets (primary, incoherent, occlusion, bounce, shadow).
+struct BenchCounts {
+  RayCounts primary, incoherent, occlusion, bounce, shadow;
+};
+
 /// The measurements of one structure (or of Embree: "embree", or "embree:robust" in its robust
 /// mode).
 struct BenchRow {
@@ -32,9 +42,9 @@ struct BenchRow {
   std::vector<BenchRates> rates;        ///< one per thread count, as the table's groups
   std::optional<size_t> mismatches;     ///< incoherent closest hits differing from Embree's
   std::optional<size_t> ties;           ///< of the agreeing ones, another triangle at the same t
-  /// Per incoherent closest-hit query, counted by the structure (intersect_cost, untimed): node
-  /// records visited and primitive tests. Unknown for Embree.
-  std::optional<double> nodes_per_ray, prims_per_ray;
+  /// Per query of each ray set, counted by the structure (intersect_cost and occluded_cost in an
+  /// untimed pass): node records visited and primitive tests. Unknown for Embree.
+  std::optional<BenchCounts> counts;
   /// The structure's own figures (AccelStats::extra, e.g. the BVHs' "sah_cost").
   std::vector<std::pair<std::string, double>> extra;
 };
