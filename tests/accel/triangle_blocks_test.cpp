@@ -169,5 +169,46 @@ TEST(TriangleBlocks, PaddingLanesAreNeverHit) {
   EXPECT_FALSE(miss.valid());
 }
 
+// The counting test counts the triangles of the blocks it tests, padding left out: all of a
+// leaf in a closest-hit test, and in an any-hit test only those up to the block (or pair of
+// blocks, as eight lanes) that holds the first hit.
+TEST(TriangleBlocks, CountTheTrianglesOfTheBlocksTested) {
+  // Eleven parallel triangles along z, the third of them the only one a ray at x = 0 hits.
+  TriangleMesh mesh;
+  for (int i = 0; i < 11; ++i) {
+    const float x = i == 2 ? 0.0f : 10.0f + float(i);
+    const auto base = uint32_t(mesh.positions.size());
+    mesh.positions.push_back({x - 1, -1, float(i + 1)});
+    mesh.positions.push_back({x + 1, -1, float(i + 1)});
+    mesh.positions.push_back({x, 1, float(i + 1)});
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+  }
+  PrimitiveSet prims;
+  prims.add_mesh(mesh, Transform(), 0);
+  std::vector<uint32_t> ids(11);
+  for (uint32_t i = 0; i < 11; ++i) ids[i] = i;
+  TriangleBlocks blocks;
+  blocks.resize(3);
+  blocks.fill(0, prims, std::span<const uint32_t>(ids));
+  const PreparedRay through(Ray{{0, 0, 0}, {0, 0, 1}});
+  const PreparedRay past(Ray{{-50, 0, 0}, {0, 0, 1}});
+  for (const PreparedRay* pr : {&through, &past}) {
+    TraversalCost closest;
+    Hit hit;
+    EXPECT_EQ(blocks.intersect<false>(BlockRay(*pr), 0, 11, hit, CostCounter{&closest}),
+              pr == &through);
+    EXPECT_EQ(closest.prims, 11u);
+  }
+  // The hit is in the first block: four lanes, or the first pair's eight.
+  TraversalCost any;
+  Hit hit;
+  EXPECT_TRUE(blocks.intersect<true>(BlockRay(through), 0, 11, hit, CostCounter{&any}));
+  EXPECT_EQ(any.prims, TriangleBlocks::kPairs ? 8u : 4u);
+  TraversalCost none;
+  EXPECT_FALSE(blocks.intersect<true>(BlockRay(past), 0, 11, hit, CostCounter{&none}));
+  EXPECT_EQ(none.prims, 11u);
+  EXPECT_EQ(any.nodes + none.nodes, 0u);
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -261,15 +261,15 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
     cost.node();
-    cost.prims(n.count());
     if constexpr (kTriangles) {
       // Blocks of four, tested four at a time (bit for bit the scalar test in reference order).
-      if (blocks_.intersect<kAnyHit>(block_ray, n.first() / 4, n.count(), hit)) {
+      if (blocks_.intersect<kAnyHit>(block_ray, n.first() / 4, n.count(), hit, cost)) {
         if constexpr (kAnyHit) return true;
         found = true;
       }
     } else {
       for (uint32_t i = n.first(), end = n.first() + n.count(); i < end; ++i) {
+        cost.prims(1);
         if (prims_->intersect(refs_[i], pr, hit)) {
           if constexpr (kAnyHit) return true;
           found = true;

@@ -9,14 +9,16 @@
 /// every lane computes exactly the bits the scalar test computes, so a structure using blocks
 /// returns the same hits as `brute`. Written with GCC/Clang vector extensions, which become SSE,
 /// AVX or AVX-512 instructions where the target has them and scalar code where it has not.
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <span>
 #include <type_traits>
 #include <vector>
 
-#include "penumbra/core/array_allocator.h"
 #include "penumbra/accel/build/prim_ref.h"
+#include "penumbra/accel/traversal_cost.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/geometry/float_error.h"
 #include "penumbra/geometry/hit.h"
 #include "penumbra/geometry/primitive_set.h"
@@ -184,9 +186,10 @@ class TriangleBlocks {
 
   /// Tests the leaf of `count` triangles starting at block `first` on (tmin, hit.t); updates
   /// `hit` exactly as testing them one by one in order with the scalar test would.
-  /// kAnyHit: returns true as soon as one block has a hit, leaving `hit` unspecified.
-  template <bool kAnyHit>
-  bool intersect(const BlockRay& r, uint32_t first, uint32_t count, Hit& hit) const;
+  /// kAnyHit: returns true as soon as one block has a hit, leaving `hit` unspecified. `cost`
+  /// counts the triangles of the blocks tested (all `count` unless an any-hit test stops early).
+  template <bool kAnyHit, class Cost = NoCost>
+  bool intersect(const BlockRay& r, uint32_t first, uint32_t count, Hit& hit, Cost cost = {}) const;
 
  private:
   // Not zeroed when sized: the callers fill() every leaf, which writes every block (a zeroing pass over the tens
@@ -299,26 +302,34 @@ template <bool kAnyHit, class F>
 
 }  // namespace block_detail
 
-template <bool kAnyHit>
+template <bool kAnyHit, class Cost>
 [[gnu::always_inline]] inline bool TriangleBlocks::intersect(const BlockRay& r, uint32_t first,
-                                                             uint32_t count, Hit& hit) const {
+                                                             uint32_t count, Hit& hit,
+                                                             Cost cost) const {
   using namespace block_detail;
   bool found = false;
   uint32_t b = first;
   const uint32_t end = first + blocks_for(count);
+  // Counted: the triangles (not the padding lanes) of each block or pair tested.
   if constexpr (kPairs) {
     // A pair of blocks at a time, as eight lanes (the layout write_leaf gave them).
-    for (; b + 1 < end; b += 2)
+    for (; b + 1 < end; b += 2) {
+      if constexpr (Cost::kCounts)
+        cost.prims(std::min<uint32_t>(count - (b - first) * kLanes, 2 * kLanes));
       if (test_lanes<kAnyHit, F8>(r, words(b), hit)) {
         if constexpr (kAnyHit) return true;
         found = true;
       }
+    }
   }
-  for (; b < end; ++b)
+  for (; b < end; ++b) {
+    if constexpr (Cost::kCounts)
+      cost.prims(std::min<uint32_t>(count - (b - first) * kLanes, kLanes));
     if (test_lanes<kAnyHit, F4>(r, words(b), hit)) {
       if constexpr (kAnyHit) return true;
       found = true;
     }
+  }
   return found;
 }
 

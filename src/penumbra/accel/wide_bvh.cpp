@@ -608,11 +608,10 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
     bool leaf_hit;
     cost.node();
     if constexpr (kTriangles) {
-      cost.prims(count);
       // The leaf test's per-ray vectors made here, not once before the loop: held across it,
       // they were 7 more than AVX2's 16 registers could keep with the box test's 10, and were
       // spilled at every ray's start (primary rays +4-14 % x Embree, shadow rays -3 to +1 %).
-      leaf_hit = blocks_.intersect<kAnyHit>(BlockRay(pr), child, count, hit);
+      leaf_hit = blocks_.intersect<kAnyHit>(BlockRay(pr), child, count, hit, cost);
     } else {
       leaf_hit = leaf_.intersect<kAnyHit, false>(*prims_, pr, child, count, hit, cost);
     }
