@@ -197,6 +197,33 @@ TEST(InstanceBvh, MatchesTheFlattenedScene) {
   EXPECT_LE(disagree, rays().size() / 1000);
 }
 
+// The counting queries of the two levels return the plain queries' answers; an any-hit query
+// of a ray that misses does the closest-hit query's work, and one that hits stops having tested
+// something.
+TEST(InstanceBvh, CountingQueriesAnswerAsThePlainOnes) {
+  const TwoLevel two("bvh");
+  size_t misses = 0;
+  for (const Ray& ray : rays()) {
+    TraversalCost closest, any;
+    Hit counted, plain;
+    const bool hit = two.top.intersect(ray, plain);
+    ASSERT_EQ(two.top.intersect_cost(ray, counted, closest), hit);
+    if (hit) {
+      ASSERT_EQ(counted.t, plain.t);
+    }
+    ASSERT_EQ(two.top.occluded_cost(ray, any), two.top.occluded(ray));
+    ASSERT_EQ(two.top.occluded(ray), hit);
+    if (hit) {
+      EXPECT_GE(any.prims, 1u);
+    } else {
+      EXPECT_EQ(any.nodes, closest.nodes);
+      EXPECT_EQ(any.prims, closest.prims);
+      ++misses;
+    }
+  }
+  EXPECT_GT(misses, rays().size() / 10);
+}
+
 TEST(InstanceBvh, StatsCountTheTopLevelOnly) {
   const TwoLevel two("bvh");
   const AccelStats s = two.top.stats();

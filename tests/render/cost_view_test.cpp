@@ -117,6 +117,58 @@ TEST(CostView, ColourMapIsMonotoneInBrightness) {
   EXPECT_EQ(lum(heat_colour(7.0f)), lum(heat_colour(1.0f)));
 }
 
+// rays=bounce and rays=shadow count the secondary query from each camera hit, nothing for a
+// camera ray that misses. Brute force makes the counts exact: a bounce ray tests all 3
+// primitives in its one leaf; a shadow ray (1 node) stops at the first primitive in its way, so
+// floor points the sphere shades test 2 (the floor, then the sphere), lit ones all 3 (the light
+// itself, which the ray stops short of, included).
+TEST(CostView, BounceAndShadowRaysCountTheQueriesFromTheCameraHits) {
+  const int spp = 4;
+  const RgbImage bounce = render(scene_json("brute", "raycast:mode=cost,rays=bounce,raw", spp));
+  const RgbImage nodes =
+      render(scene_json("brute", "raycast:mode=cost,rays=shadow,cost=nodes,raw", spp));
+  const RgbImage prims =
+      render(scene_json("brute", "raycast:mode=cost,rays=shadow,cost=prims,raw", spp));
+  int missed = 0, all_hit = 0, stopped_early = 0;
+  for (int y = 0; y < bounce.height(); ++y)
+    for (int x = 0; x < bounce.width(); ++x) {
+      // Each sample adds 4 (1 node + 3 tests) or 0.
+      const float k = bounce.at(x, y).r * spp / 4.0f;
+      EXPECT_NEAR(k, std::round(k), 1e-4f) << x << ", " << y;
+      missed += k < 0.5f;
+      all_hit += k > spp - 0.5f;
+      // The shadow rays: one node each, and from 1 to 3 tests each.
+      const float n = nodes.at(x, y).r * spp, p = prims.at(x, y).r * spp;
+      EXPECT_NEAR(n, std::round(n), 1e-4f) << x << ", " << y;
+      EXPECT_LE(n, std::round(k) + 1e-4f);
+      EXPECT_GE(p, n - 1e-4f);
+      EXPECT_LE(p, 3 * n + 1e-4f);
+      stopped_early += n > 0.5f && p < 3 * n - 0.5f;
+    }
+  EXPECT_GT(missed, 0);
+  EXPECT_GT(all_hit, bounce.width() * bounce.height() / 4);
+  EXPECT_GT(stopped_early, 0);
+}
+
+// rays=shadow needs a light; an unknown rays names the valid ones.
+TEST(CostView, ShadowRaysNeedALightAndUnknownRaysAreAnError) {
+  std::string dark = scene_json("bvh", "raycast:mode=cost,rays=shadow");
+  dark.replace(dark.find(R"(, "emission": [5, 5, 5])"), 23, "");
+  try {
+    render(dark);
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("needs a light"), std::string::npos) << e.what();
+  }
+  try {
+    render(scene_json("bvh", "raycast:mode=cost,rays=bogus"));
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("valid: camera, bounce, shadow"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(CostView, UnknownCostIsAnErrorListingTheValidOnes) {
   try {
     render(scene_json("bvh", "raycast:mode=cost,cost=bogus"));

@@ -84,7 +84,11 @@ bool InstanceBvh::traverse(const Ray& ray, Hit& hit, Cost cost) const {
       const Accelerator& bottom = *objects_[inst.object].accel;
       const Ray local = to_object(ray, inst.to_world, hit.t);
       if constexpr (kAnyHit) {
-        if (bottom.occluded(local)) return true;
+        if constexpr (Cost::kCounts) {
+          if (bottom.occluded_cost(local, *cost.cost)) return true;
+        } else if (bottom.occluded(local)) {
+          return true;
+        }
       } else {
         Hit h;
         bool any;
@@ -116,6 +120,13 @@ bool InstanceBvh::intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) 
   hit.t = ray.tmax;
   if (!traceable(ray) || nodes_.empty()) return false;
   return traverse<false>(ray, hit, CostCounter{&cost});
+}
+
+bool InstanceBvh::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  if (!traceable(ray) || nodes_.empty()) return false;
+  Hit hit;
+  hit.t = ray.tmax;
+  return traverse<true>(ray, hit, CostCounter{&cost});
 }
 
 bool InstanceBvh::occluded(const Ray& ray) const {

@@ -42,6 +42,8 @@ class InstanceBvh {
   bool occluded(const Ray& ray) const;
   /// intersect, adding the top level's nodes and each visited instance's bottom-level cost.
   bool intersect_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const;
+  /// occluded, adding to `cost` the work of this level and of the instances' structures.
+  bool occluded_cost(const Ray& ray, TraversalCost& cost) const;
 
   /// The instances, in the order given to build().
   const std::vector<Instance>& instances() const { return instances_; }

@@ -277,6 +277,11 @@ bool World::closest_hit_cost(const Ray& ray, Hit& hit, TraversalCost& cost) cons
   return true;
 }
 
+bool World::occluded_cost(const Ray& ray, TraversalCost& cost) const {
+  return accel_->occluded_cost(ray, cost) ||
+         (has_instances() && instanced_.occluded_cost(ray, cost));
+}
+
 bool World::closest_hit(const Ray& ray, Hit& hit, RayCounter& counter) const {
   if (++counter.rays % kTimedEvery != 0) return closest_hit(ray, hit);
   const uint64_t t0 = tick_count();

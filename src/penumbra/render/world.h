@@ -49,6 +49,8 @@ class World {
   /// closest_hit, adding to `cost` the work of every structure it asked (the scene's, the top
   /// level over instances and the instances' own): the cost view's query.
   bool closest_hit_cost(const Ray& ray, Hit& hit, TraversalCost& cost) const;
+  /// Whether anything blocks `ray`, adding to `cost` the work of every structure it asked.
+  bool occluded_cost(const Ray& ray, TraversalCost& cost) const;
   /// Closest hit along `ray`; fills `si` and returns true when there is one.
   bool intersect(const Ray& ray, SurfaceInteraction& si, RayCounter& counter) const;
   /// closest_hit, counted (and one ray in 17 timed) in `counter` as intersect counts it: for

@@ -10,6 +10,7 @@
 #include "penumbra/render/film.h"
 #include "penumbra/render/material/material.h"
 #include "penumbra/render/render_job.h"
+#include "penumbra/render/sampling.h"
 
 namespace penumbra {
 
@@ -28,6 +29,20 @@ RaycastIntegrator::RaycastIntegrator(const World& world, const ParamList& params
     else throw Error("raycast: unknown cost '" + cost + "' (valid: nodes, prims, both)");
     scale_ = params.get_real("scale", 0.0, 0.0, 1e12);
     raw_ = params.get_flag("raw");
+    const std::string rays = params.get_string("rays", "camera");
+    if (rays == "camera")
+      rays_ = Rays::kCamera;
+    else if (rays == "bounce")
+      rays_ = Rays::kBounce;
+    else if (rays == "shadow")
+      rays_ = Rays::kShadow;
+    else
+      throw Error("raycast: unknown rays '" + rays + "' (valid: camera, bounce, shadow)");
+    if (rays_ == Rays::kShadow) {
+      if (world.lights().empty())
+        throw Error("raycast: rays=shadow needs a light in the scene, and it has none");
+      lights_ = std::make_unique<LightSampler>(world.lights(), "power");
+    }
   }
   params.check_all_used();
 }
@@ -41,6 +56,7 @@ std::string RaycastIntegrator::name() const {
     case Mode::kCost: {
       std::string s = "raycast:mode=cost";
       if (cost_ != Cost::kBoth) s += cost_ == Cost::kNodes ? ",cost=nodes" : ",cost=prims";
+      if (rays_ != Rays::kCamera) s += rays_ == Rays::kBounce ? ",rays=bounce" : ",rays=shadow";
       if (scale_ > 0) s += fmt::format(",scale={}", scale_);
       if (raw_) s += ",raw=true";
       return s;
@@ -51,12 +67,39 @@ std::string RaycastIntegrator::name() const {
   }
 }
 
-Rgb RaycastIntegrator::li(const Ray& ray, Sampler&, RayCounter& counter) const {
+TraversalCost RaycastIntegrator::secondary_cost(const Ray& ray, Sampler& sampler,
+                                                RayCounter& counter) const {
+  TraversalCost c;
+  SurfaceInteraction si;
+  if (!world_.intersect(ray, si, counter)) return c;
+  ++counter.rays;
+  if (rays_ == Rays::kBounce) {
+    Vec3 d = si.to_world(sample_cosine_hemisphere(sampler.get_2d()));
+    if (dot(d, si.ng) * dot(si.wo, si.ng) < 0.0f) d = -d;  // the side the camera sees
+    Hit hit;
+    world_.closest_hit_cost(si.spawn_ray(d, ray.time), hit, c);
+    return c;
+  }
+  const float u_light = sampler.get_1d();
+  const Vec2 u = sampler.get_2d();
+  const SampledLight picked = lights_->sample(u_light);
+  if (!picked.light) return c;
+  const LightSample ls = picked.light->sample_li(si.p, u);
+  if (!(ls.pdf > 0.0f)) return c;
+  world_.occluded_cost(si.shadow_ray(ls, ray.time), c);
+  return c;
+}
+
+Rgb RaycastIntegrator::li(const Ray& ray, Sampler& sampler, RayCounter& counter) const {
   if (mode_ == Mode::kCost) {
     TraversalCost c;
-    Hit hit;
-    world_.closest_hit_cost(ray, hit, c);
-    ++counter.rays;
+    if (rays_ == Rays::kCamera) {
+      Hit hit;
+      world_.closest_hit_cost(ray, hit, c);
+      ++counter.rays;
+    } else {
+      c = secondary_cost(ray, sampler, counter);
+    }
     const double n = cost_ == Cost::kNodes   ? double(c.nodes)
                      : cost_ == Cost::kPrims ? double(c.prims)
                                              : double(c.nodes + c.prims);
@@ -85,8 +128,11 @@ RenderStats RaycastIntegrator::render(RenderJob& job) {
   const char* what = cost_ == Cost::kNodes   ? "node visits"
                      : cost_ == Cost::kPrims ? "primitive tests"
                                              : "node visits + primitive tests";
-  stats.note = fmt::format("cost view: {} per camera ray, colour bar 0 (bottom) to {:g} (top)",
-                           what, scale);
+  const char* rays = rays_ == Rays::kCamera   ? "per camera ray"
+                     : rays_ == Rays::kBounce ? "of the bounce ray from each camera hit"
+                                              : "of the shadow ray from each camera hit";
+  stats.note =
+      fmt::format("cost view: {} {}, colour bar 0 (bottom) to {:g} (top)", what, rays, scale);
   return stats;
 }
 

@@ -1,7 +1,10 @@
 #pragma once
 /// `raycast`: the first hit only, the debugging view, and the cost view of the structures.
+#include <memory>
+
 #include "penumbra/core/params.h"
 #include "penumbra/render/integrator/integrator.h"
+#include "penumbra/render/light/light_sampler.h"
 
 namespace penumbra {
 
@@ -18,10 +21,16 @@ class Film;
 /// red and yellow to white (`scale`; 0, the default, takes the image's largest mean), with the
 /// colour bar in the rightmost columns (0 at the bottom, the scale at the top); the summary
 /// line says the scale. `raw=true` keeps the mean counts themselves in every channel (for EXR).
+/// `rays=bounce` counts instead the closest-hit query of one diffuse bounce from each camera hit
+/// (a cosine-weighted direction on the side the camera sees), `rays=shadow` the any-hit query of
+/// one shadow ray from each camera hit to a light sample (the path tracer's light sampler,
+/// `power`): the rays a path tracer spends its time on, as accel-bench's bounce and shadow
+/// sets. A camera ray that hits nothing counts nothing there.
 class RaycastIntegrator final : public SamplingIntegrator {
  public:
   enum class Mode { kNormal, kAlbedo, kEyelight, kCost };
   enum class Cost { kNodes, kPrims, kBoth };
+  enum class Rays { kCamera, kBounce, kShadow };
   RaycastIntegrator(const World& world, const ParamList& params);
   std::string name() const override;
   RenderStats render(RenderJob& job) override;
@@ -31,9 +40,14 @@ class RaycastIntegrator final : public SamplingIntegrator {
   /// Replaces the film's mean counts by the heat map and draws the colour bar; returns the scale.
   double colour_costs(Film& film) const;
 
+  /// The counts of the secondary ray of `rays_` from the camera ray's hit.
+  TraversalCost secondary_cost(const Ray& ray, Sampler& sampler, RayCounter& counter) const;
+
   const World& world_;
   Mode mode_;
   Cost cost_ = Cost::kBoth;
+  Rays rays_ = Rays::kCamera;
+  std::unique_ptr<LightSampler> lights_;  ///< for rays=shadow
   double scale_ = 0;  ///< count at the top of the colour map; 0: the image's largest
   bool raw_ = false;
 };
