@@ -315,6 +315,77 @@ TEST(KdTree, RaysAlongSplitPlanesAgreeWithBruteForce) {
   }
 }
 
+TEST(KdTree, RaysFromSplitPlanesAgreeWithBruteForce) {
+  // Rays that start inside the tree descend to their origin's leaf by the side of each plane
+  // the origin lies on; an origin in a plane goes to the side the ray leaves it for. Origins in
+  // split planes, leaving them up, down or along them, from tmin = 0 and from further on; the
+  // room is centred on 0, so that some planes lie at 0 and the origins there are given as -0
+  // and as +0.
+  EXPECT_FALSE(std::signbit(KdNode::inner(1, -0.0f, 7).split()));
+  const TestScene s = room_with_boxes(25, 17, Vec3(-5.0f));
+  for (const char* spec : {"kdtree:sah", "kdtree:median", "kdtree:gap"}) {
+    KdTree kd = make(spec);
+    kd.build(s.prims);
+    std::vector<Ray> rays;
+    Pcg32 rng(6, 5);
+    const Bounds3 b = kd.bounds();
+    int at_zero = 0;
+    for (const Visit& v : walk(kd)) {
+      if (v.empty || kd.nodes()[v.node].is_leaf() || rays.size() > 40000) continue;
+      const KdNode& n = kd.nodes()[v.node];
+      at_zero += n.split() == 0.0f;
+      for (int k = 0; k < 48; ++k) {
+        Ray r;
+        r.o = b.lo + b.diagonal() * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
+        r.d = normalize(Vec3(rng.next_float(), rng.next_float(), rng.next_float()) - Vec3(0.5f));
+        r.o[n.axis()] = n.split() == 0.0f && k % 2 ? -0.0f : n.split();
+        const int leave = k % 6;  // up, down, along (+0 or -0), up and down at a grazing angle
+        r.d[n.axis()] = leave == 0   ? 0.5f
+                        : leave == 1 ? -0.5f
+                        : leave == 2 ? 0.0f
+                        : leave == 3 ? -0.0f
+                        : leave == 4 ? 1e-6f
+                                     : -1e-6f;
+        if (k % 12 >= 6) r.tmin = 0.5f * rng.next_float();
+        rays.push_back(r);
+      }
+    }
+    ASSERT_GT(rays.size(), 1000u) << spec;
+    EXPECT_GT(at_zero, 0) << spec;
+    EXPECT_EQ(differences(kd, s.prims, rays), 0u) << spec;
+  }
+}
+
+TEST(KdTree, RaysFromASplitPlaneEnterOnlyTheSideTheyLeaveFor) {
+  // Two triangles on either side of x = 0, the median split: a ray from the plane visits the
+  // root and the leaf on the side it goes to, whatever the sign of the zero it starts at, and a
+  // ray parallel to the plane only its own side. Each of these is one node more when the
+  // descent takes the origin's zero or the plane's side wrongly (it stays correct, but tests
+  // the other leaf for nothing).
+  PrimitiveSet prims;
+  add_triangle(prims, {-2, 0, 0}, {-1, 0, 1}, {-1, 1, 0});  // -x + y + z = 2
+  add_triangle(prims, {1, 0, 0}, {2, 0, 1}, {2, 1, 0});     // x - y - z = 1
+  KdTree kd = make("kdtree:median,leaf=1");
+  kd.build(prims);
+  ASSERT_EQ(kd.nodes().size(), 3u);
+  ASSERT_EQ(kd.nodes()[0].split(), 0.0f);
+  struct Case {
+    Vec3 o, d;
+    uint32_t prim;  ///< kNoPrim: a miss
+  };
+  const Case cases[] = {
+      {{-0.0f, 0.25f, 0.25f}, {1, 0, 0}, 1},       {{0.0f, 0.25f, 0.25f}, {1, 0, 0}, 1},
+      {{-0.0f, 0.25f, 0.25f}, {-1, 0, 0}, 0},      {{0.0f, 0.25f, 0.25f}, {-1, 0, 0}, 0},
+      {{-0.5f, 0.25f, 0.25f}, {0, 1, 0}, kNoPrim}, {{0.5f, 0.25f, 0.25f}, {0, -0.0f, 1}, kNoPrim}};
+  for (const Case& c : cases) {
+    TraversalCost cost;
+    Hit hit;
+    EXPECT_EQ(kd.intersect_cost(Ray{c.o, c.d}, hit, cost), c.prim != kNoPrim);
+    EXPECT_EQ(hit.prim, c.prim);
+    EXPECT_EQ(cost.nodes, 2u) << "from " << c.o.x << " along " << c.d.x << ", " << c.d.y;
+  }
+}
+
 TEST(KdTree, EmptySpaceIsCutOff) {
   // A small cluster in one corner of a big box marked by four far clusters: the SAH cuts off
   // the empty space into empty leaves, and one of them holds most of the volume.

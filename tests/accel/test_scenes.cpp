@@ -83,7 +83,7 @@ TestScene coplanar_grid(int nx, int ny) {
   return s;
 }
 
-TestScene room_with_boxes(int boxes, uint64_t seed) {
+TestScene room_with_boxes(int boxes, uint64_t seed, Vec3 offset) {
   TestScene s{"room_with_boxes", {}};
   Pcg32 rng(seed, 2);
   TriangleMesh m;
@@ -96,7 +96,7 @@ TestScene room_with_boxes(int boxes, uint64_t seed) {
                     0.5f * float(1 + rng.next_bounded(3)));
     add_box(m, lo, min(lo + size, Vec3(10.0f)));
   }
-  s.prims.add_mesh(m, Transform(), 0);
+  s.prims.add_mesh(m, translate(offset), 0);
   return s;
 }
 

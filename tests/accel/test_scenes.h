@@ -21,8 +21,9 @@ TestScene random_soup(int n, uint64_t seed);
 /// An nx x ny grid of unit squares in the plane z = 0 (two triangles each, integer vertices,
 /// shared edges), plus a second grid at z = 1 offset by half a cell.
 TestScene coplanar_grid(int nx, int ny);
-/// A closed room [0,10]^3 with `boxes` axis-aligned boxes inside (all triangles, axis-aligned).
-TestScene room_with_boxes(int boxes, uint64_t seed);
+/// A closed room [0,10]^3 with `boxes` axis-aligned boxes inside (all triangles, axis-aligned),
+/// moved by `offset` (by a translation: an offset of integers keeps every vertex exact).
+TestScene room_with_boxes(int boxes, uint64_t seed, Vec3 offset = Vec3(0.0f));
 /// Needle-thin, tiny and very large triangles mixed.
 TestScene thin_and_large(uint64_t seed);
 /// Spheres, parallelograms and triangles together (not all triangles).

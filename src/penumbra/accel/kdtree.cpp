@@ -32,6 +32,27 @@ inline float min_keep(float a, float b) {
   return a < b ? a : b;
 }
 
+/// An integer whose signed order is the order of the floats (-0 below +0; no NaN).
+inline int32_t order_key(float f) {
+  const auto w = std::bit_cast<uint32_t>(f);
+  return int32_t(w ^ (uint32_t(int32_t(w) >> 31) & 0x7fffffffu));
+}
+
+/// k[axis] for axis 0..2 without a load or a branch: two conditional moves after the axis is
+/// known, where a load from the array would take five cycles and a branch would mispredict.
+inline int32_t select3(int axis, const int32_t (&k)[3]) {
+#if defined(__x86_64__)
+  int32_t v = k[0];
+  asm("test $1, %[ax]\n\tcmovnz %[k1], %[v]\n\ttest $2, %[ax]\n\tcmovnz %[k2], %[v]"
+      : [v] "+r"(v)
+      : [ax] "r"(axis), [k1] "r"(k[1]), [k2] "r"(k[2])
+      : "cc");
+  return v;
+#else
+  return k[axis];
+#endif
+}
+
 /// A deferred far child and its interval along the ray.
 struct StackEntry {
   uint32_t node;
@@ -195,11 +216,65 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   int sp = 0;
   uint32_t index = 0;
   bool found = false;
+  KdNode n = nodes[0];
+  if (bounds_.contains(pr.ray.o)) {
+    // A ray that starts inside the tree (every ray from a surface, and the random rays) first
+    // descends to the leaf that holds its origin. The child to enter is the one on the origin's
+    // side of the plane (for an origin in the plane, the side the ray goes to); the other one,
+    // when the ray runs towards the plane and reaches it before tmax, is deferred with its part
+    // of the interval. The step has no branch but the loop's: which way such a descent turns
+    // is random for random rays, and a mispredicted step costs as long as the chain that
+    // decides it. The side is an integer comparison and the child a conditional move, so the
+    // next node's address is known about ten cycles after the node's load, where a plane
+    // distance takes twice that (docs/accel/kdtree.md, "Traversal"). The child on the origin's
+    // side may get an empty interval (an origin within tmin of a plane), which wastes the visit
+    // and loses nothing: the other child is deferred with the whole interval.
+    //
+    // Any side is correct for an origin in the plane (the other is then deferred with the whole
+    // interval); the side the ray goes to saves a visit. So the origin's keys are one less for
+    // a negative direction, which makes such an origin count as below the plane (the key of a
+    // finite float is at least INT32_MIN + 2^23: this does not wrap), and zeros are +0, as the
+    // splits (KdNode::inner). Off the plane, the side is exact.
+    const int32_t o_keys[3] = {order_key(o[0] + 0.0f) - pr.neg[0],
+                               order_key(o[1] + 0.0f) - pr.neg[1],
+                               order_key(o[2] + 0.0f) - pr.neg[2]};
+    while (!n.is_leaf()) {
+      cost.node();
+      const int axis = n.axis();
+      const float split = n.split();
+      const uint32_t below = index + 1, above = n.above();
+      const bool up = select3(axis, o_keys) >= order_key(split);
+      const uint32_t near = up ? above : below, far = up ? below : above;
+      const uint32_t empty = n.empty_children();
+      const uint32_t near_empty = (empty >> uint32_t(up)) & 1u;
+      const uint32_t far_empty = (empty >> uint32_t(!up)) & 1u;
+      // The plane lies ahead when the ray runs from the origin's side towards it (decided by
+      // the signs, not by tp, which can round to 0), and for a ray lying in the plane (d = 0
+      // there, tp NaN), which visits both sides with the whole interval. The far child is
+      // deferred when the plane lies ahead before tmax (tp = +inf for a ray parallel to it).
+      // The entry is written every step and kept only then.
+      const float tp = (split - o[axis]) * inv[axis];
+      const float slack = kSlack * std::fabs(tp);
+      const bool ahead = (uint32_t(up) == (neg_mask[axis] & 1u)) | (tp != tp);
+      const float far_tmin = max_keep(tp - slack, tmin);
+      stack[sp] = {far, far_tmin, tmax};
+      sp += int(ahead & !(tp >= tmax) & !(far_tmin > tmax) & (far_empty == 0));
+      // tmax = ahead ? min_keep(tp + slack, tmax) : tmax, as a select on the bits: a
+      // conditional on floats compiles to a branch.
+      const uint32_t keep = 0u - uint32_t(!ahead);
+      const uint32_t cut = std::bit_cast<uint32_t>(min_keep(tp + slack, tmax));
+      tmax = std::bit_cast<float>((cut & ~keep) | (std::bit_cast<uint32_t>(tmax) & keep));
+      if (near_empty) goto pop;
+      index = near;
+      n = nodes[index];
+    }
+    goto leaf;
+  }
   while (true) {
     // Inner nodes: the child the ray enters first is the one below the plane when the direction
     // is positive on the axis. Visit the far child too only when the plane lies inside
     // (tmin, tmax); a ray lying in the plane (0 * inf = NaN) visits both with the whole interval.
-    KdNode n = nodes[index];
+    n = nodes[index];
     while (!n.is_leaf()) {
       cost.node();
       const int axis = n.axis();
@@ -260,6 +335,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
       n = nodes[index];
     }
     // Leaf: test its primitives; each hit shrinks hit.t.
+  leaf:
     cost.node();
     if constexpr (kTriangles) {
       // Blocks of four, tested four at a time (bit for bit the scalar test in reference order).

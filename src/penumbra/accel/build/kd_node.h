@@ -22,9 +22,11 @@ inline constexpr int kKdMaxDepth = 64;
 /// child (see KdTree::build).
 class KdNode {
  public:
-  /// An inner node splitting `axis` at `split`, whose above child is node `above`.
+  /// An inner node splitting `axis` at `split`, whose above child is node `above`. A split at
+  /// -0 is stored as +0 (the same plane), as the traversal compares origins and splits by
+  /// their bits.
   static KdNode inner(int axis, float split, uint32_t above) {
-    return KdNode(std::bit_cast<uint32_t>(split), (above << 2) | uint32_t(axis));
+    return KdNode(std::bit_cast<uint32_t>(split + 0.0f), (above << 2) | uint32_t(axis));
   }
   /// A leaf holding references [first, first + count).
   static KdNode leaf(uint32_t first, uint32_t count) { return KdNode(first, (count << 2) | 3u); }
