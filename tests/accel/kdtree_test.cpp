@@ -284,32 +284,43 @@ TEST(KdTree, TriangleInASplitPlaneIsFoundFromBothSides) {
   }
 }
 
+/// Rays from the split planes of `kd`'s inner nodes, 48 per node until there are more than
+/// `max`: an origin uniform in the bounds moved into the plane and a random direction, which
+/// `adjust(ray, node, k, rng)` completes (false: leave the ray out).
+template <class Adjust>
+std::vector<Ray> rays_in_split_planes(const KdTree& kd, uint64_t seed, size_t max, Adjust adjust) {
+  std::vector<Ray> rays;
+  Pcg32 rng(seed, 5);
+  const Bounds3 b = kd.bounds();
+  for (const Visit& v : walk(kd)) {
+    if (v.empty || kd.nodes()[v.node].is_leaf() || rays.size() > max) continue;
+    const KdNode& n = kd.nodes()[v.node];
+    for (int k = 0; k < 48; ++k) {
+      Ray r;
+      r.o = b.lo + b.diagonal() * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
+      r.d = normalize(Vec3(rng.next_float(), rng.next_float(), rng.next_float()) - Vec3(0.5f));
+      r.o[n.axis()] = n.split();
+      if (adjust(r, n, k, rng)) rays.push_back(r);
+    }
+  }
+  return rays;
+}
+
 TEST(KdTree, RaysAlongSplitPlanesAgreeWithBruteForce) {
   // Axis-aligned boxes: many faces and edges lie in split planes.
   const TestScene s = room_with_boxes(25, 17);
   for (const char* spec : {"kdtree:sah", "kdtree:median", "kdtree:gap"}) {
     KdTree kd = make(spec);
     kd.build(s.prims);
-    std::vector<Ray> rays;
-    Pcg32 rng(5, 5);
-    const Bounds3 b = kd.bounds();
-    for (const Visit& v : walk(kd)) {
-      if (v.empty || kd.nodes()[v.node].is_leaf() || rays.size() > 20000) continue;
-      const KdNode& n = kd.nodes()[v.node];
-      for (int k = 0; k < 48; ++k) {
-        Ray r;
-        r.o = b.lo + b.diagonal() * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
-        r.d = normalize(Vec3(rng.next_float(), rng.next_float(), rng.next_float()) - Vec3(0.5f));
-        r.o[n.axis()] = n.split();  // in the plane, and staying in it
-        r.d[n.axis()] = k % 2 ? 0.0f : -0.0f;
-        if (k % 8 >= 4) {  // along an edge direction too: parallel to a second axis
-          const int other = (n.axis() + 1 + k % 2) % 3;
-          r.d[other] = 0.0f;
-        }
-        if (r.d == Vec3(0.0f)) continue;
-        rays.push_back(r);
-      }
-    }
+    const std::vector<Ray> rays =
+        rays_in_split_planes(kd, 5, 20000, [](Ray& r, const KdNode& n, int k, Pcg32&) {
+          r.d[n.axis()] = k % 2 ? 0.0f : -0.0f;  // in the plane, and staying in it
+          if (k % 8 >= 4) {  // along an edge direction too: parallel to a second axis
+            const int other = (n.axis() + 1 + k % 2) % 3;
+            r.d[other] = 0.0f;
+          }
+          return r.d != Vec3(0.0f);
+        });
     ASSERT_GT(rays.size(), 1000u);
     EXPECT_EQ(differences(kd, s.prims, rays), 0u) << spec;
   }
@@ -326,30 +337,21 @@ TEST(KdTree, RaysFromSplitPlanesAgreeWithBruteForce) {
   for (const char* spec : {"kdtree:sah", "kdtree:median", "kdtree:gap"}) {
     KdTree kd = make(spec);
     kd.build(s.prims);
-    std::vector<Ray> rays;
-    Pcg32 rng(6, 5);
-    const Bounds3 b = kd.bounds();
     int at_zero = 0;
-    for (const Visit& v : walk(kd)) {
-      if (v.empty || kd.nodes()[v.node].is_leaf() || rays.size() > 40000) continue;
-      const KdNode& n = kd.nodes()[v.node];
-      at_zero += n.split() == 0.0f;
-      for (int k = 0; k < 48; ++k) {
-        Ray r;
-        r.o = b.lo + b.diagonal() * Vec3(rng.next_float(), rng.next_float(), rng.next_float());
-        r.d = normalize(Vec3(rng.next_float(), rng.next_float(), rng.next_float()) - Vec3(0.5f));
-        r.o[n.axis()] = n.split() == 0.0f && k % 2 ? -0.0f : n.split();
-        const int leave = k % 6;  // up, down, along (+0 or -0), up and down at a grazing angle
-        r.d[n.axis()] = leave == 0   ? 0.5f
-                        : leave == 1 ? -0.5f
-                        : leave == 2 ? 0.0f
-                        : leave == 3 ? -0.0f
-                        : leave == 4 ? 1e-6f
-                                     : -1e-6f;
-        if (k % 12 >= 6) r.tmin = 0.5f * rng.next_float();
-        rays.push_back(r);
-      }
-    }
+    for (const KdNode& n : kd.nodes()) at_zero += !n.is_leaf() && n.split() == 0.0f;
+    const std::vector<Ray> rays =
+        rays_in_split_planes(kd, 6, 40000, [](Ray& r, const KdNode& n, int k, Pcg32& rng) {
+          if (n.split() == 0.0f && k % 2) r.o[n.axis()] = -0.0f;
+          const int leave = k % 6;  // up, down, along (+0 or -0), up and down at a grazing angle
+          r.d[n.axis()] = leave == 0   ? 0.5f
+                          : leave == 1 ? -0.5f
+                          : leave == 2 ? 0.0f
+                          : leave == 3 ? -0.0f
+                          : leave == 4 ? 1e-6f
+                                       : -1e-6f;
+          if (k % 12 >= 6) r.tmin = 0.5f * rng.next_float();
+          return true;
+        });
     ASSERT_GT(rays.size(), 1000u) << spec;
     EXPECT_GT(at_zero, 0) << spec;
     EXPECT_EQ(differences(kd, s.prims, rays), 0u) << spec;
