@@ -5,7 +5,9 @@
 /// child. Stored as a flat array of 8-byte nodes and a flat reference array; traversed front to
 /// back with the tmin/tmax stack of Pharr, Jakob, Humphreys ("Physically Based Rendering", 3rd
 /// ed., section 4.4.3), itself Havran's recursive algorithm ("Heuristic Ray Shooting
-/// Algorithms", PhD thesis, 2000) made iterative.
+/// Algorithms", PhD thesis, 2000) made iterative. A ray that starts inside the tree first
+/// descends to its origin's leaf without branches, by the side of each plane the origin lies on
+/// (kdtree.cpp; docs/accel/kdtree.md, "The first descent").
 ///
 /// Parameters (`kdtree:sah,ci=0.5`); the defaults are the fastest of a sweep on bunny,
 /// human_blend, cylinder_engine and spheres-1m (docs/accel/kdtree.md):
