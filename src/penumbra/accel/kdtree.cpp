@@ -220,21 +220,20 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   if (bounds_.contains(pr.ray.o)) {
     // A ray that starts inside the tree (every ray from a surface, and the random rays) first
     // descends to the leaf that holds its origin. The child to enter is the one on the origin's
-    // side of the plane (for an origin in the plane, the side the ray goes to); the other one,
-    // when the ray runs towards the plane and reaches it before tmax, is deferred with its part
-    // of the interval. The step has no branch but the loop's: which way such a descent turns
-    // is random for random rays, and a mispredicted step costs as long as the chain that
-    // decides it. The side is an integer comparison and the child a conditional move, so the
-    // next node's address is known about ten cycles after the node's load, where a plane
-    // distance takes twice that (docs/accel/kdtree.md, "Traversal"). The child on the origin's
-    // side may get an empty interval (an origin within tmin of a plane), which wastes the visit
-    // and loses nothing: the other child is deferred with the whole interval.
+    // side of the plane; the other one, when the ray runs towards the plane and reaches it
+    // before tmax, is deferred with its part of the interval. The step has no branch but the
+    // loop's: which way such a descent turns is random for random rays, and a mispredicted step
+    // costs as long as the chain that decides it. The side is an integer comparison and the
+    // child a conditional move, so the next node's address is known about ten cycles after the
+    // node's load, where a plane distance takes twice that (docs/accel/kdtree.md, "The first
+    // descent"). The child on the origin's side may get an empty interval (an origin within
+    // tmin of a plane), which wastes the visit and loses nothing.
     //
-    // Any side is correct for an origin in the plane (the other is then deferred with the whole
-    // interval); the side the ray goes to saves a visit. So the origin's keys are one less for
-    // a negative direction, which makes such an origin count as below the plane (the key of a
-    // finite float is at least INT32_MIN + 2^23: this does not wrap), and zeros are +0, as the
-    // splits (KdNode::inner). Off the plane, the side is exact.
+    // Off the plane, the side is exact. For an origin in the plane any side is correct (the
+    // other is then deferred with the whole interval), and the side the ray goes to saves a
+    // visit: so the origin's keys are one less for a negative direction, which makes such an
+    // origin count as below the plane (the key of a finite float is at least INT32_MIN + 2^23:
+    // this does not wrap), and zeros are +0, as the splits (KdNode::inner).
     const int32_t o_keys[3] = {order_key(o[0] + 0.0f) - pr.neg[0],
                                order_key(o[1] + 0.0f) - pr.neg[1],
                                order_key(o[2] + 0.0f) - pr.neg[2]};
