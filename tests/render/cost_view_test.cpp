@@ -40,6 +40,16 @@ RgbImage render(const std::string& json, RenderStats* stats = nullptr) {
   return job.film->resolve();
 }
 
+/// Rendering `json` fails with an error whose message holds `fragment`.
+void expect_render_error(const std::string& json, const std::string& fragment) {
+  try {
+    render(json);
+    FAIL() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
 // Brute force tests every primitive for every ray in its one leaf: 3 tests and 1 node per pixel,
 // whatever the ray sees; the raw view writes exactly these means.
 TEST(CostView, BruteForceCountsEveryPrimitiveInEveryPixel) {
@@ -154,29 +164,14 @@ TEST(CostView, BounceAndShadowRaysCountTheQueriesFromTheCameraHits) {
 TEST(CostView, ShadowRaysNeedALightAndUnknownRaysAreAnError) {
   std::string dark = scene_json("bvh", "raycast:mode=cost,rays=shadow");
   dark.replace(dark.find(R"(, "emission": [5, 5, 5])"), 23, "");
-  try {
-    render(dark);
-    FAIL() << "no error";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("needs a light"), std::string::npos) << e.what();
-  }
-  try {
-    render(scene_json("bvh", "raycast:mode=cost,rays=bogus"));
-    FAIL() << "no error";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("valid: camera, bounce, shadow"), std::string::npos)
-        << e.what();
-  }
+  expect_render_error(dark, "needs a light");
+  expect_render_error(scene_json("bvh", "raycast:mode=cost,rays=bogus"),
+                      "valid: camera, bounce, shadow");
 }
 
 TEST(CostView, UnknownCostIsAnErrorListingTheValidOnes) {
-  try {
-    render(scene_json("bvh", "raycast:mode=cost,cost=bogus"));
-    FAIL() << "no error";
-  } catch (const std::exception& e) {
-    EXPECT_NE(std::string(e.what()).find("valid: nodes, prims, both"), std::string::npos)
-        << e.what();
-  }
+  expect_render_error(scene_json("bvh", "raycast:mode=cost,cost=bogus"),
+                      "valid: nodes, prims, both");
   EXPECT_ANY_THROW(render(scene_json("bvh", "raycast:mode=normal,cost=nodes")));  // unused key
 }
 
