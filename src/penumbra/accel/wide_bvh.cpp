@@ -12,6 +12,7 @@
 #include "penumbra/accel/build/treelet_opt.h"
 #include "penumbra/accel/build/wide_collapse.h"
 #include "penumbra/accel/build/wide_emit.h"
+#include "penumbra/accel/prefetch.h"
 #include "penumbra/accel/simd.h"
 #include "penumbra/accel/small_sort.h"
 #include "penumbra/core/error.h"
@@ -385,19 +386,17 @@ template <bool kAnyHit, bool kTriangles>
                                                          const PreparedRay& pr, Hit& hit,
                                                          Walk& w) const {
   using F = FloatW<W>;
-  // Starts loading the first line of a node or leaf the ray will visit.
+  // Starts loading all of a node or leaf the ray will visit (as traverse()'s prefetch_child).
   const auto prefetch = [&](uint32_t c, uint32_t count) {
     if (kTriangles && count)
-      __builtin_prefetch(blocks_.block(c));
+      blocks_.prefetch(c, count);
     else if (count == 0)
-      __builtin_prefetch(&nodes[c]);
+      prefetch_bytes<int(sizeof(Node) / kCacheLine)>(&nodes[c], sizeof(Node));
   };
-  // Where the ray goes next, loading it (a node's first box line and its children's line) while
-  // the other rays take their steps.
+  // Where the ray goes next, loading it while the other rays take their steps.
   const auto go = [&](uint32_t c, uint32_t count) {
     w.child = c, w.count = count;
     prefetch(c, count);
-    if (count == 0) __builtin_prefetch(nodes[c].child);
     return false;
   };
   if (w.count == 0) {
@@ -464,7 +463,7 @@ template <bool kAnyHit, bool kTriangles>
     --w.sp;
   } while (w.stack[w.sp].t > hit.t);
   w.child = w.stack[w.sp].child, w.count = w.stack[w.sp].count;
-  if (w.count == 0) __builtin_prefetch(nodes[w.child].child);
+  if (w.count == 0) prefetch_line(nodes[w.child].child);
   return false;
 }
 
@@ -489,16 +488,21 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
   // The node array in a local: through `this`, register pressure made GCC reload the object
   // pointer and then the array's at every node (any-hit rays +0.01-0.03 x Embree without).
   const Node* const nodes = nodes_.data();
-  // A deferred child will often be visited: start loading its first line (a node's boxes, or a
-  // leaf's first block) while the nearer ones are traversed.
+  // A deferred child will often be visited, and the child taken next is visited now: start
+  // loading all of it (a node's lines, or a leaf's blocks) while the nearer ones are traversed
+  // or the others deferred. The first line alone left the rest to be fetched when the box test
+  // or the leaf test asked (on a Zen 4, occlusion rays +9-28 % and incoherent ones +8-17 % on
+  // cylinder_engine, spheres-1m and the terrain; docs/accel.md, "2026-12-06, nineteenth
+  // session").
+  constexpr int kNodeLines = int(sizeof(Node) / kCacheLine);
   const auto prefetch_child = [&](uint32_t c, uint32_t count) {
     if constexpr (kTriangles) {
       if (count) {
-        __builtin_prefetch(blocks_.block(c));
+        blocks_.prefetch(c, count);
         return;
       }
     }
-    if (count == 0) __builtin_prefetch(&nodes[c]);
+    if (count == 0) prefetch_bytes<kNodeLines>(&nodes[c], sizeof(Node));
   };
 
   StackEntry stack[kStackSize];
@@ -516,7 +520,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       // The children's indices lie on another cache line than the boxes; which one is needed
       // depends on the box test, so fetch the line now rather than after it (two misses in
       // parallel instead of one after the other).
-      __builtin_prefetch(n.child);
+      prefetch_line(n.child);
       const F t1 = F::broadcast(hit.t);
       const F near = max((plane(n, nx) - ox) * ix,
                          max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
@@ -663,7 +667,7 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
       slot[k].box = WideBoxRay<W>(slot[k].pr);
       slot[k].index = i;
       walks[k].child = 0, walks[k].count = 0, walks[k].sp = 0, walks[k].found = false;
-      __builtin_prefetch(nodes[0].child);
+      prefetch_line(nodes[0].child);
       return true;
     }
     return false;
