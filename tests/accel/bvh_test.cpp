@@ -441,6 +441,73 @@ TEST(WideBvh, AnyHitOrdersGiveBruteForcesAnswers) {
   EXPECT_THROW(make_accelerator("bvh:anyhit=nearest"), Error);
 }
 
+// prefetch=whole and prefetch=line only change which lines a child's prefetch loads: both give
+// brute force's closest hits and any-hit answers (a tie, another primitive met at the same
+// point, may go to another primitive than brute force's), and the same primitives as each other,
+// single and in interleaved batches (whose step prefetches through the same choice), at every
+// width. prefetch=auto loads whole children in structures beyond 1 MiB ("prefetch whole": 1) and
+// first lines in smaller ones.
+TEST(WideBvh, PrefetchModesGiveBruteForcesAnswers) {
+  const TestScene scene = room_with_boxes(40, 5);
+  auto brute = make_accelerator("brute");
+  brute->build(scene.prims);
+  const std::vector<Ray> rays = mixed_rays(scene.prims, 3000, 8);
+  const auto whole_stat = [](const Accelerator& a) {
+    for (const auto& [name, value] : a.stats().extra)
+      if (name == "prefetch whole") return value;
+    return -1.0;
+  };
+  for (const std::string base : {"bvh:", "bvh4:", "bvh:width=8,", "bvh:width=16,",
+                                 "bvh:nodes=compressed,", "bvh:interleave=on,"}) {
+    std::vector<Hit> closest[2];
+    for (const int whole : {0, 1}) {
+      const std::string name = base + (whole ? "prefetch=whole" : "prefetch=line");
+      auto acc = make_accelerator(name);
+      acc->build(scene.prims);
+      EXPECT_EQ(whole_stat(*acc), double(whole)) << name;
+      std::vector<Hit> batch_hits(rays.size());
+      acc->intersect_batch(rays, batch_hits, BatchOrder::kIncoherent);
+      std::vector<uint8_t> blocked(rays.size(), 2);
+      acc->occluded_batch(rays, blocked, BatchOrder::kIncoherent);
+      size_t hits = 0;
+      for (size_t i = 0; i < rays.size(); ++i) {
+        Hit expected, got;
+        const bool e = brute->intersect(rays[i], expected);
+        hits += e;
+        ASSERT_EQ(acc->intersect(rays[i], got), e) << name << " ray " << i;
+        if (e && got.prim == expected.prim) {
+          ASSERT_EQ(got.t, expected.t) << name << " ray " << i;
+        } else if (e) {  // a tie: another primitive met at the same point
+          ASSERT_NEAR(got.t, expected.t, 1e-6f * expected.t) << name << " ray " << i;
+        }
+        if (e) {
+          ASSERT_EQ(batch_hits[i].t, got.t) << name << " ray " << i;
+          ASSERT_EQ(batch_hits[i].prim, got.prim) << name << " ray " << i;
+        }
+        closest[whole].push_back(got);
+        const bool o = brute->occluded(rays[i]);
+        ASSERT_EQ(acc->occluded(rays[i]), o) << name << " ray " << i;
+        ASSERT_EQ(blocked[i], uint8_t(o)) << name << " ray " << i;
+      }
+      EXPECT_GT(hits, rays.size() / 10) << name;  // hits and misses both occur
+      EXPECT_LT(hits, rays.size()) << name;
+    }
+    for (size_t i = 0; i < rays.size(); ++i)
+      ASSERT_EQ(closest[0][i].prim, closest[1][i].prim) << base << " ray " << i;
+  }
+  // auto: the 40 boxes' tree stays under 1 MiB; 30,000 triangles' exceeds it.
+  auto small = make_accelerator("bvh");
+  small->build(scene.prims);
+  ASSERT_LT(small->stats().bytes, size_t(1) << 20);
+  EXPECT_EQ(whole_stat(*small), 0.0);
+  const TestScene soup = random_soup(30000, 9);
+  auto large = make_accelerator("bvh");
+  large->build(soup.prims);
+  ASSERT_GT(large->stats().bytes, size_t(1) << 20);
+  EXPECT_EQ(whole_stat(*large), 1.0);
+  EXPECT_THROW(make_accelerator("bvh:prefetch=all"), Error);
+}
+
 // The default order visits a node's children nearest first, whatever slots they hold and
 // however many the ray enters (two, the sorting networks of three and four, more): k small
 // tetrahedra in a row along x (a leaf each, the root's k children), and a ray along the row from

@@ -145,6 +145,11 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
     throw Error(fmt::format("{}: parameter 'interleave' must be auto, on or off, got '{}'",
                             params.name(), interleave));
   interleave_mode_ = interleave == "on" ? 1 : interleave == "off" ? 0 : -1;
+  const std::string prefetch = params.get_string("prefetch", "auto");
+  if (prefetch != "auto" && prefetch != "whole" && prefetch != "line")
+    throw Error(fmt::format("{}: parameter 'prefetch' must be auto, whole or line, got '{}'",
+                            params.name(), prefetch));
+  prefetch_mode_ = prefetch == "whole" ? 1 : prefetch == "line" ? 0 : -1;
   // Spatial splits are on by default for binned builds (budget 1: at most twice the references).
   const bool binned = params_.method == BvhSplitMethod::kBinned;
   params_.spatial_budget = float(params.get_real("spatial", binned ? 1.0 : 0.0, 0.0, 4.0));
@@ -308,6 +313,8 @@ void WideBvh<W, Node>::build(const PrimitiveSet& prims) {
   stats_.extra = {{"width", double(W)}, {"sah_cost", sah_cost}};
   interleave_ = interleave_mode_ < 0 ? stats_.bytes > kInterleaveBytes : interleave_mode_ == 1;
   stats_.extra.emplace_back("interleaved batches", double(interleave_));
+  prefetch_whole_ = prefetch_mode_ < 0 ? stats_.bytes > kPrefetchWholeBytes : prefetch_mode_ == 1;
+  stats_.extra.emplace_back("prefetch whole", double(prefetch_whole_));
   stats_.extra.emplace_back("anyhit span", double(any_hit_span_));
   if (best.optimized) {
     stats_.extra.emplace_back("treelets rewritten", double(best.treelets));
@@ -386,12 +393,12 @@ template <bool kAnyHit, bool kTriangles>
                                                          const PreparedRay& pr, Hit& hit,
                                                          Walk& w) const {
   using F = FloatW<W>;
-  // Starts loading all of a node or leaf the ray will visit (as traverse()'s prefetch_child).
+  // Starts loading a node or leaf the ray will visit (as traverse()'s prefetch_child).
   const auto prefetch = [&](uint32_t c, uint32_t count) {
     if (kTriangles && count)
-      blocks_.prefetch(c, count);
+      prefetch_leaf(c, count);
     else if (count == 0)
-      prefetch_bytes<int(sizeof(Node) / kCacheLine)>(&nodes[c], sizeof(Node));
+      prefetch_node(&nodes[c]);
   };
   // Where the ray goes next, loading it while the other rays take their steps.
   const auto go = [&](uint32_t c, uint32_t count) {
@@ -494,15 +501,14 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
   // or the leaf test asked (on a Zen 4, occlusion rays +9-28 % and incoherent ones +8-17 % on
   // cylinder_engine, spheres-1m and the terrain; docs/accel.md, "2026-12-06, nineteenth
   // session").
-  constexpr int kNodeLines = int(sizeof(Node) / kCacheLine);
   const auto prefetch_child = [&](uint32_t c, uint32_t count) {
     if constexpr (kTriangles) {
       if (count) {
-        blocks_.prefetch(c, count);
+        prefetch_leaf(c, count);
         return;
       }
     }
-    if (count == 0) prefetch_bytes<kNodeLines>(&nodes[c], sizeof(Node));
+    if (count == 0) prefetch_node(&nodes[c]);
   };
 
   StackEntry stack[kStackSize];

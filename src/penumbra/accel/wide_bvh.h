@@ -23,16 +23,19 @@
 /// 8-wide one also nodes=full|compressed (the node layout) and order=distance|octant (how
 /// closest-hit rays order the children they visit); anyhit=auto|span|lanes (which inner child an
 /// any-hit ray visits first when no leaf is hit: the longest span through its box, or the lowest
-/// lane; auto: span on Intel CPUs, lanes on others, chosen when the program runs).
+/// lane; auto: span on Intel CPUs, lanes on others, chosen when the program runs); prefetch=
+/// auto|whole|line (whether a child about to be visited starts loading whole or its first line;
+/// auto: whole when the structure exceeds 1 MiB).
 #include <string>
 #include <vector>
 
 #include "penumbra/accel/accelerator.h"
-#include "penumbra/core/array_allocator.h"
 #include "penumbra/accel/build/bvh_builder.h"
 #include "penumbra/accel/leaf_prims.h"
+#include "penumbra/accel/prefetch.h"
 #include "penumbra/accel/triangle_blocks.h"
 #include "penumbra/accel/wide_node.h"
+#include "penumbra/core/array_allocator.h"
 #include "penumbra/core/params.h"
 
 namespace penumbra {
@@ -117,6 +120,27 @@ class WideBvh final : public Accelerator {
   int interleave_mode_ = -1;
   bool interleave_ = false;  ///< the build's outcome of interleave_mode_
   static constexpr size_t kInterleaveBytes = size_t(16) << 20;
+  /// prefetch=whole|line|auto (1, 0, -1): a child's prefetch loads all of a node's or a leaf's
+  /// lines, or the first; auto: all when the structure takes more than kPrefetchWholeBytes (the
+  /// Zen 4's L2), where its lines come from beyond the L2.
+  int prefetch_mode_ = -1;
+  bool prefetch_whole_ = false;  ///< the build's outcome of prefetch_mode_
+  static constexpr size_t kPrefetchWholeBytes = size_t(1) << 20;
+  /// Starts loading node `n`: all its lines, or with prefetch=line the first.
+  void prefetch_node(const Node* n) const {
+    if (prefetch_whole_)
+      prefetch_bytes<int(sizeof(Node) / kCacheLine)>(n, sizeof(Node));
+    else
+      prefetch_line(n);
+  }
+  /// Starts loading the leaf of `count` triangles at block `first`: all its blocks, or the first
+  /// line.
+  void prefetch_leaf(uint32_t first, uint32_t count) const {
+    if (prefetch_whole_)
+      blocks_.prefetch(first, count);
+    else
+      prefetch_line(blocks_.block(first));
+  }
   const PrimitiveSet* prims_ = nullptr;
   std::vector<Node, ArrayAllocator<Node>> nodes_;
   LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle
