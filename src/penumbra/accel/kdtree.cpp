@@ -339,7 +339,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
     if constexpr (kTriangles) {
       // Blocks of four, tested four at a time (bit for bit the scalar test in reference order).
       // All the leaf's blocks start loading before the first is tested (a Zen 4: occlusion and
-      // shadow rays +2-7 %, closest hits -4 to +5 %; docs/accel.md, "2026-12-06, nineteenth
+      // shadow rays +3-7 %, closest hits -5 to +9 %; docs/accel.md, "2026-12-06, nineteenth
       // session").
       blocks_.prefetch(n.first() / 4, n.count());
       if (blocks_.intersect<kAnyHit>(block_ray, n.first() / 4, n.count(), hit, cost)) {
