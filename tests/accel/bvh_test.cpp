@@ -564,8 +564,8 @@ TEST(WideBvh, DistanceOrderVisitsTwoToSixteenChildrenNearestFirst) {
 // register per row), with leaves of up to 16 and 8 triangles; the compressed nodes and the
 // octant order imply 8.
 TEST(Bvh, AnyHitOrderFollowsTheCpu) {
-  // anyhit=auto: the span order on Intel CPUs, the lane order on others; reported as the
-  // extra statistic "anyhit span" (1 or 0).
+  // anyhit=auto: the span order on Intel CPUs and CPUs with AVX-512, the lane order on others;
+  // reported as the extra statistic "anyhit span" (1 or 0).
   TriangleMesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   m.indices = {0, 1, 2};
@@ -578,22 +578,30 @@ TEST(Bvh, AnyHitOrderFollowsTheCpu) {
       if (name == "anyhit span") return value;
     return -1.0;
   };
-  EXPECT_EQ(span_stat("bvh"), cpu_is_intel() ? 1.0 : 0.0);
+  const double span_auto = cpu_is_intel() || cpu_has_avx512() ? 1.0 : 0.0;
+  EXPECT_EQ(span_stat("bvh"), span_auto);
   for (const std::string bvh : {"bvh:width=4", "bvh:width=8", "bvh:width=16"}) {
     SCOPED_TRACE(bvh);
-    EXPECT_EQ(span_stat(bvh), cpu_is_intel() ? 1.0 : 0.0);
+    EXPECT_EQ(span_stat(bvh), span_auto);
     EXPECT_EQ(span_stat(bvh + ",anyhit=span"), 1.0);
     EXPECT_EQ(span_stat(bvh + ",anyhit=lanes"), 0.0);
   }
 #if defined(__x86_64__)
-  // This machine's vendor, read independently of __builtin_cpu_is from /proc/cpuinfo.
+  // This machine's vendor and AVX-512, read independently of __builtin_cpu_is and
+  // __builtin_cpu_supports from /proc/cpuinfo.
   std::ifstream info("/proc/cpuinfo");
   std::string line;
-  while (std::getline(info, line))
-    if (line.rfind("vendor_id", 0) == 0) {
+  bool vendor_seen = false, flags_seen = false;
+  while (std::getline(info, line) && !(vendor_seen && flags_seen)) {
+    if (!vendor_seen && line.rfind("vendor_id", 0) == 0) {
       EXPECT_EQ(cpu_is_intel(), line.find("GenuineIntel") != std::string::npos) << line;
-      break;
+      vendor_seen = true;
     }
+    if (!flags_seen && line.rfind("flags", 0) == 0) {
+      EXPECT_EQ(cpu_has_avx512(), (line + " ").find(" avx512f ") != std::string::npos);
+      flags_seen = true;
+    }
+  }
 #endif
 }
 

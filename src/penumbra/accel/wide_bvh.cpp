@@ -132,14 +132,16 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
     throw Error(fmt::format("{}: order=octant needs width 8", params.name()));
   octant_order_ = order == "octant";
   // anyhit=auto: the span order on an Intel CPU (faster on the Intel Xeon measured, in its
-  // AVX-512 and in AVX2 code), the lane order on others (faster on the Zen 2 measured); which
-  // is faster depends on the core, not on the instruction set the code was compiled for
-  // (docs/accel.md, "2026-12-05, tenth session" and "2026-12-06, sixteenth session").
+  // AVX-512 and in AVX2 code) and on a CPU with AVX-512 (the Zen 4 measured: occlusion +1-7 %
+  // on three meshes of four since whole-child prefetches), the lane order on others (faster on
+  // the Zen 2 measured); which is faster depends on the core, not on the instruction set the
+  // code was compiled for (docs/accel.md, "2026-12-05, tenth session", "2026-12-06, sixteenth
+  // session" and "nineteenth session").
   const std::string anyhit = params.get_string("anyhit", "auto");
   if (anyhit != "auto" && anyhit != "span" && anyhit != "lanes")
     throw Error(fmt::format("{}: parameter 'anyhit' must be auto, span or lanes, got '{}'",
                             params.name(), anyhit));
-  any_hit_span_ = anyhit == "auto" ? cpu_is_intel() : anyhit == "span";
+  any_hit_span_ = anyhit == "auto" ? cpu_is_intel() || cpu_has_avx512() : anyhit == "span";
   const std::string interleave = params.get_string("interleave", "auto");
   if (interleave != "auto" && interleave != "on" && interleave != "off")
     throw Error(fmt::format("{}: parameter 'interleave' must be auto, on or off, got '{}'",

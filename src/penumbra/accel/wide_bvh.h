@@ -23,7 +23,8 @@
 /// 8-wide one also nodes=full|compressed (the node layout) and order=distance|octant (how
 /// closest-hit rays order the children they visit); anyhit=auto|span|lanes (which inner child an
 /// any-hit ray visits first when no leaf is hit: the longest span through its box, or the lowest
-/// lane; auto: span on Intel CPUs, lanes on others, chosen when the program runs); prefetch=
+/// lane; auto: span on Intel CPUs and CPUs with AVX-512, lanes on others, chosen when the
+/// program runs); prefetch=
 /// auto|whole|line (whether a child about to be visited starts loading whole or its first line;
 /// auto: whole when the structure exceeds 1 MiB).
 #include <string>
@@ -113,7 +114,7 @@ class WideBvh final : public Accelerator {
   /// ray's octant (slots laid out for it by the collapse) instead of by entry distance.
   bool octant_order_ = false;
   /// anyhit=span: an any-hit ray with no leaf among the children a node's test keeps visits
-  /// the one its box crosses longest first; anyhit=lanes: the lowest lane (auto: by target).
+  /// the one its box crosses longest first; anyhit=lanes: the lowest lane (auto: by the CPU).
   bool any_hit_span_ = false;
   /// interleave=on|off|auto (1, 0, -1): batch queries interleave their rays; auto: when the
   /// structure takes more than kInterleaveBytes, beyond what the caches hold.

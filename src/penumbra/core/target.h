@@ -2,8 +2,8 @@
 /// What the code was compiled for and what it runs on. Penumbra chooses its SIMD code when it is
 /// compiled, not when it runs, so compiled_vectors(), not the machine's CPU, is what a benchmark's
 /// figures were measured with (a portable SSE2 build on an AVX-512 machine runs SSE2 code;
-/// docs/accel.md, "2026-12-06, fifteenth session"); cpu_is_intel() is for the few defaults that
-/// depend on the core that runs the program.
+/// docs/accel.md, "2026-12-06, fifteenth session"); cpu_is_intel() and cpu_has_avx512() are for
+/// the few defaults that depend on the core that runs the program.
 namespace penumbra {
 
 /// "AVX-512", "AVX2", "AVX", "SSE4.2", "SSE2", "NEON" or "scalar": the widest of these the target
@@ -32,6 +32,17 @@ constexpr const char* compiled_vectors() {
 inline bool cpu_is_intel() {
 #if defined(__x86_64__) || defined(__i386__)
   return __builtin_cpu_is("intel");
+#else
+  return false;
+#endif
+}
+
+/// True when the CPU running the program has AVX-512 Foundation (whatever the code was compiled
+/// for), false on other CPUs and other architectures. With cpu_is_intel(), for
+/// `bvh:anyhit=auto`.
+inline bool cpu_has_avx512() {
+#if defined(__x86_64__) || defined(__i386__)
+  return __builtin_cpu_supports("avx512f");
 #else
   return false;
 #endif
