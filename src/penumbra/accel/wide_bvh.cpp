@@ -132,8 +132,9 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
     throw Error(fmt::format("{}: order=octant needs width 8", params.name()));
   octant_order_ = order == "octant";
   // anyhit=auto: the span order on an Intel CPU (faster on the Intel Xeon measured, in its
-  // AVX-512 and in AVX2 code) and on a CPU with AVX-512 (the Zen 4 measured: occlusion +1-7 %
-  // on three meshes of four since whole-child prefetches), the lane order on others (faster on
+  // AVX-512 and in AVX2 code) and on a CPU with AVX-512 (the Zen 4 measured, with whole-child
+  // prefetches: occlusion +1-7 % on the three meshes where it stood at 1.0 x Embree, -2 to -4 %
+  // on the two at 1.2-1.3), the lane order on others (faster on
   // the Zen 2 measured); which is faster depends on the core, not on the instruction set the
   // code was compiled for (docs/accel.md, "2026-12-05, tenth session", "2026-12-06, sixteenth
   // session" and "nineteenth session").
@@ -395,12 +396,9 @@ template <bool kAnyHit, bool kTriangles>
                                                          const PreparedRay& pr, Hit& hit,
                                                          Walk& w) const {
   using F = FloatW<W>;
-  // Starts loading a node or leaf the ray will visit (as traverse()'s prefetch_child).
+  // Starts loading a node or leaf the ray will visit (as traverse() does).
   const auto prefetch = [&](uint32_t c, uint32_t count) {
-    if (kTriangles && count)
-      prefetch_leaf(c, count);
-    else if (count == 0)
-      prefetch_node(&nodes[c]);
+    prefetch_child<kTriangles>(nodes, c, count);
   };
   // Where the ray goes next, loading it while the other rays take their steps.
   const auto go = [&](uint32_t c, uint32_t count) {
@@ -498,19 +496,13 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
   // pointer and then the array's at every node (any-hit rays +0.01-0.03 x Embree without).
   const Node* const nodes = nodes_.data();
   // A deferred child will often be visited, and the child taken next is visited now: start
-  // loading all of it (a node's lines, or a leaf's blocks) while the nearer ones are traversed
-  // or the others deferred. The first line alone left the rest to be fetched when the box test
-  // or the leaf test asked (on a Zen 4, occlusion rays +9-28 % and incoherent ones +8-17 % on
-  // cylinder_engine, spheres-1m and the terrain; docs/accel.md, "2026-12-06, nineteenth
-  // session").
-  const auto prefetch_child = [&](uint32_t c, uint32_t count) {
-    if constexpr (kTriangles) {
-      if (count) {
-        prefetch_leaf(c, count);
-        return;
-      }
-    }
-    if (count == 0) prefetch_node(&nodes[c]);
+  // loading it while the nearer ones are traversed or the others deferred: all of it (a node's
+  // lines, a leaf's blocks) in structures over 1 MiB. The first line alone left the rest to be
+  // fetched when the box test or the leaf test asked (on a Zen 4, occlusion rays +9-28 % and
+  // incoherent ones +8-17 % on cylinder_engine, spheres-1m and the terrain; docs/accel.md,
+  // "2026-12-06, nineteenth session").
+  const auto prefetch = [&](uint32_t c, uint32_t count) {
+    prefetch_child<kTriangles>(nodes, c, count);
   };
 
   StackEntry stack[kStackSize];
@@ -547,13 +539,13 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
         // The child taken next starts loading before the others are deferred (a leaf's first
         // block is where occlusion rays wait on a Zen 4: cylinder_engine +7 %, human_blend +5 %;
         // docs/accel.md, "2026-12-06, eighteenth session").
-        prefetch_child(n.child[i0], n.count[i0]);
+        prefetch(n.child[i0], n.count[i0]);
         mask &= ~(1u << i0);
         const auto defer = [&](unsigned lanes) {
           for (; lanes; lanes &= lanes - 1) {
             const int i = std::countr_zero(lanes);
             stack[sp++] = {n.child[i], n.count[i], 0.0f};
-            prefetch_child(n.child[i], n.count[i]);
+            prefetch(n.child[i], n.count[i]);
           }
         };
         defer(mask & ~leaves);
@@ -584,7 +576,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
           rest &= ~(1u << j);
           const int i = j ^ oct;
           stack[sp++] = {n.child[i], n.count[i], dist[i]};
-          prefetch_child(n.child[i], n.count[i]);
+          prefetch(n.child[i], n.count[i]);
         }
         child = n.child[first], count = n.count[first];
         continue;
@@ -598,7 +590,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
         const bool swap = __builtin_expect_with_probability(dist[i1] < dist[i0], 1, 0.5);
         const int a = swap ? i1 : i0, b = i0 ^ i1 ^ a;
         stack[sp++] = {n.child[b], n.count[b], dist[b]};
-        prefetch_child(n.child[b], n.count[b]);
+        prefetch(n.child[b], n.count[b]);
         child = n.child[a], count = n.count[a];
         continue;
       }
@@ -614,7 +606,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       for (int j = k - 1; j > 0; --j) {
         const int i = key_lane(key[j]);
         stack[sp++] = {n.child[i], n.count[i], dist[i]};
-        prefetch_child(n.child[i], n.count[i]);
+        prefetch(n.child[i], n.count[i]);
       }
       const int first = key_lane(key[0]);
       child = n.child[first], count = n.count[first];

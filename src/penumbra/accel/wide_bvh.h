@@ -142,6 +142,16 @@ class WideBvh final : public Accelerator {
     else
       prefetch_line(blocks_.block(first));
   }
+  /// Starts loading the child (`c`, `count`) of a node in `nodes`: a leaf of triangle blocks
+  /// (kTriangles and count > 0) or an inner node (count 0); a leaf of other primitives is not
+  /// prefetched.
+  template <bool kTriangles>
+  void prefetch_child(const Node* nodes, uint32_t c, uint32_t count) const {
+    if (count == 0)
+      prefetch_node(&nodes[c]);
+    else if constexpr (kTriangles)
+      prefetch_leaf(c, count);
+  }
   const PrimitiveSet* prims_ = nullptr;
   std::vector<Node, ArrayAllocator<Node>> nodes_;
   LeafPrims leaf_;         ///< leaf order ids, when not every primitive is a triangle
