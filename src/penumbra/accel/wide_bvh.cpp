@@ -30,6 +30,15 @@ using wide_build::WideNodeArray;
 
 namespace {
 
+/// Whether traverse() makes the leaf test's per-ray vectors (BlockRay) once per ray rather than
+/// at each leaf: where the target has AVX-512's 32 vector registers, which hold them across the
+/// loop beside the box test's.
+#if defined(__AVX512F__)
+constexpr bool kBlockRayPerRay = true;
+#else
+constexpr bool kBlockRayPerRay = false;
+#endif
+
 /// optimize=auto restructures the treelets of sets of at most this many primitives (one pass).
 constexpr size_t kOptimizeBelow = size_t(1) << 18;
 
@@ -505,6 +514,13 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
     prefetch_child<kTriangles>(nodes, c, count);
   };
 
+  // The leaf test's per-ray vectors, made here where the target has 32 vector registers
+  // (kBlockRayPerRay: on a Zen 4, occlusion rays +7-8 % x Embree on the bunny, human_blend and
+  // cylinder_engine, incoherent ones +3-5 %, shadow rays +5-9 %; docs/accel.md, "2026-12-07,
+  // twentieth session"), else at each leaf: held across the loop, they were 7 more than AVX2's
+  // 16 registers could keep with the box test's 10, and were spilled at every ray's start
+  // (primary rays +4-14 % x Embree, shadow rays -3 to +1 %, made at each leaf).
+  const MaybeBlockRay<kTriangles && kBlockRayPerRay> block_ray(pr);
   StackEntry stack[kStackSize];
   int sp = 0;
   uint32_t child = 0, count = 0;  // the root, an inner node
@@ -616,10 +632,10 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
     bool leaf_hit;
     cost.node();
     if constexpr (kTriangles) {
-      // The leaf test's per-ray vectors made here, not once before the loop: held across it,
-      // they were 7 more than AVX2's 16 registers could keep with the box test's 10, and were
-      // spilled at every ray's start (primary rays +4-14 % x Embree, shadow rays -3 to +1 %).
-      leaf_hit = blocks_.intersect<kAnyHit>(BlockRay(pr), child, count, hit, cost);
+      if constexpr (kBlockRayPerRay)
+        leaf_hit = blocks_.intersect<kAnyHit>(block_ray, child, count, hit, cost);
+      else
+        leaf_hit = blocks_.intersect<kAnyHit>(BlockRay(pr), child, count, hit, cost);
     } else {
       leaf_hit = leaf_.intersect<kAnyHit, false>(*prims_, pr, child, count, hit, cost);
     }
