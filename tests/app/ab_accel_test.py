@@ -9,19 +9,11 @@ Usage: ab_accel_test.py PENUMBRA_CLI SOURCE_DIR
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 
-
-def fail(msg):
-    print(f"FAIL: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def run(script, *args):
-    return subprocess.run([sys.executable, script, *args], stdout=subprocess.PIPE,
-                          stderr=subprocess.PIPE, text=True)
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+from script_test import fail, run  # noqa: E402
 
 
 def main():

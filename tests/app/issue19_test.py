@@ -9,21 +9,13 @@ Usage: issue19_test.py PENUMBRA_CLI SOURCE_DIR
 
 import json
 import os
-import subprocess
 import sys
 import tempfile
 
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+from script_test import fail, run  # noqa: E402
+
 CELLS = ("primary", "incoherent", "occlusion", "bounce", "shadow")
-
-
-def fail(msg):
-    print(f"FAIL: {msg}", file=sys.stderr)
-    sys.exit(1)
-
-
-def run(script, *args):
-    return subprocess.run([sys.executable, script, *args], stdout=subprocess.PIPE,
-                          stderr=subprocess.PIPE, text=True)
 
 
 def check_stats(where, s):
