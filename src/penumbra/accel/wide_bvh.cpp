@@ -143,10 +143,10 @@ WideBvh<W, Node>::WideBvh(const ParamList& params) {
   // anyhit=auto: the span order on an Intel CPU (faster on the Intel Xeon measured, in its
   // AVX-512 and in AVX2 code) and on a CPU with AVX-512 (the Zen 4 measured, with whole-child
   // prefetches: occlusion +1-7 % on the three meshes where it stood at 1.0 x Embree, -2 to -4 %
-  // on the two at 1.2-1.3), the lane order on others (faster on
-  // the Zen 2 measured); which is faster depends on the core, not on the instruction set the
-  // code was compiled for (docs/accel.md, "2026-12-05, tenth session", "2026-12-06, sixteenth
-  // session" and "nineteenth session").
+  // on the two at 1.2-1.3), the lane order on others (faster on the Zen 2 measured); which is
+  // faster depends on the core, not on the instruction set the code was compiled for
+  // (docs/accel.md, "2026-12-05, tenth session", "2026-12-06, sixteenth session" and
+  // "nineteenth session").
   const std::string anyhit = params.get_string("anyhit", "auto");
   if (anyhit != "auto" && anyhit != "span" && anyhit != "lanes")
     throw Error(fmt::format("{}: parameter 'anyhit' must be auto, span or lanes, got '{}'",

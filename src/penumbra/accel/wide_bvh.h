@@ -24,9 +24,8 @@
 /// closest-hit rays order the children they visit); anyhit=auto|span|lanes (which inner child an
 /// any-hit ray visits first when no leaf is hit: the longest span through its box, or the lowest
 /// lane; auto: span on Intel CPUs and CPUs with AVX-512, lanes on others, chosen when the
-/// program runs); prefetch=
-/// auto|whole|line (whether a child about to be visited starts loading whole or its first line;
-/// auto: whole when the structure exceeds 1 MiB).
+/// program runs); prefetch=auto|whole|line (whether a child about to be visited starts loading
+/// whole or its first line; auto: whole when the structure exceeds 1 MiB).
 #include <string>
 #include <vector>
 
