@@ -20,7 +20,12 @@ meshes the issue names), memory on every mesh.
 Usage:
   bench/issue19.py [--penumbra build/penumbra] [--scenes ../shared/scenes] [--terrain PLY]
                    [--meshes PATH,PATH,...] [--rounds 3] [--threads 1,2] [--repeat 5]
-                   [--rays 500000] [--image N] [--json OUT]
+                   [--rays 500000] [--image N] [--pin CPU] [--json OUT]
+
+--pin CPU runs every one-thread measurement as a process of its own bound to that CPU (the
+other thread counts in another process, unbound). On a virtual machine whose CPUs are not alike
+(the Zen 4 of docs/accel.md, "2026-12-07, twenty-first session": one of its two ran penumbra's
+traversal up to a quarter slower at times, Embree's less), this takes the CPU out of the noise.
 
 The default meshes are the issue's five: bunny.obj, human_blend.obj, cylinder_engine.obj and
 spheres-1m.ply from --scenes, and the terrain of bench/make_terrain.py (--terrain, or written to
@@ -57,6 +62,8 @@ def parse_args(argv):
     p.add_argument("--repeat", type=int, default=5, help="accel-bench --repeat (default 5)")
     p.add_argument("--rays", type=int, default=500000, help="incoherent rays (default 500000)")
     p.add_argument("--image", type=int, help="side of the primary rays' image")
+    p.add_argument("--pin", type=int, metavar="CPU",
+                   help="run the one-thread measurements bound to this CPU")
     p.add_argument("--json", help="write every round and the summary to this file")
     args = p.parse_args(argv)
     if args.rounds < 1:
@@ -67,6 +74,12 @@ def parse_args(argv):
         p.error(f"--threads: '{args.threads}' is not a list of integers")
     if not args.thread_list or args.thread_list[0] < 1:
         p.error("--threads: thread counts must be at least 1")
+    if args.pin is not None:
+        if not hasattr(os, "sched_setaffinity"):
+            p.error("--pin: this system cannot bind a process to a CPU")
+        if args.pin not in os.sched_getaffinity(0):
+            allowed = ",".join(str(c) for c in sorted(os.sched_getaffinity(0)))
+            p.error(f"--pin: CPU {args.pin} is not one this process may run on ({allowed})")
     if not (os.path.isfile(args.penumbra) and os.access(args.penumbra, os.X_OK)):
         p.error(f"{args.penumbra}: not an executable file")
     if args.meshes:
@@ -95,8 +108,15 @@ def mesh_names(paths):
 
 
 def accel_bench(args, mesh, threads, out_json, extra):
+    """One accel-bench run's rows by structure; a one-thread run is bound to --pin's CPU."""
     cmd = [args.penumbra, "accel-bench", mesh, "--threads", threads, "--json", out_json] + extra
-    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+    def bind():  # in the child, before accel-bench starts
+        os.sched_setaffinity(0, {args.pin})
+
+    pinned = args.pin is not None and threads == "1"
+    proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                          preexec_fn=bind if pinned else None)
     if proc.returncode != 0:
         tail = "\n".join(proc.stderr.strip().splitlines()[-5:])
         sys.exit(f"issue19: {' '.join(cmd)} exited with {proc.returncode}:\n{tail}")
@@ -118,7 +138,17 @@ def measure(args, tmp):
     for r in range(args.rounds):
         got = {}
         for mesh, name in zip(args.mesh_list, names):
-            rows = {"full": accel_bench(args, mesh, args.threads, out, bench)}
+            if args.pin is not None and 1 in args.thread_list and args.thread_list != [1]:
+                # The other thread counts' process gives the rows (built with the most
+                # threads); the bound one-thread process adds its runs.
+                rest = ",".join(str(t) for t in args.thread_list if t != 1)
+                full = accel_bench(args, mesh, rest, out, bench)
+                pinned = accel_bench(args, mesh, "1", out, bench)
+                for accel, row in full.items():
+                    row["runs"] = pinned[accel]["runs"] + row["runs"]
+            else:
+                full = accel_bench(args, mesh, ",".join(map(str, args.thread_list)), out, bench)
+            rows = {"full": full}
             if args.thread_list != [1]:
                 rows["one"] = accel_bench(args, mesh, "1", out, builds)
             got[name] = rows

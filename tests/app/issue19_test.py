@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """CTest Issue19.ChecksTheTargets: bench/issue19.py runs its rounds over two small meshes,
 reports every mesh and target, writes a JSON whose medians lie within their ranges and whose
-verdicts follow from them, and refuses bad input with a clear message, a non-zero exit and no
-JSON.
+verdicts follow from them, merges the runs of --pin's bound one-thread process with the others',
+and refuses bad input with a clear message, a non-zero exit and no JSON.
 
 Usage: issue19_test.py PENUMBRA_CLI SOURCE_DIR
 """
@@ -72,6 +72,21 @@ def main():
             if len(inc) != 1 or inc[0]["met"] != want:
                 fail(f"incoherent verdict {inc}, expected met = {want}")
 
+        # --pin: the one-thread runs in a process of their own, bound to the CPU, merged
+        # with the other thread counts' runs.
+        cpu = min(os.sched_getaffinity(0))
+        p = run(script, "--penumbra", cli, "--meshes", meshes, "--threads", "1,2", *small[2:],
+                "--rounds", "1", "--pin", str(cpu), "--json", out)
+        if p.returncode != 0:
+            fail(f"--pin {cpu}: exit {p.returncode}: {p.stderr}")
+        for word in ("bvh over kdtree, 1 thr", "bvh over kdtree, 2 thr"):
+            if word not in p.stdout:
+                fail(f"--pin: '{word}' missing from the report:\n{p.stdout}")
+        for name, rows in json.load(open(out))["rounds"][0].items():
+            for accel, row in rows["full"].items():
+                if [r["threads"] for r in row["runs"]] != [1, 2]:
+                    fail(f"--pin: {name} {accel} runs at {[r['threads'] for r in row['runs']]}")
+
         # Bad input: a missing mesh, a mesh accel-bench refuses, a bad thread list or round
         # count, a missing executable. None writes JSON.
         bad_out = os.path.join(tmp, "bad.json")
@@ -82,7 +97,8 @@ def main():
                 (["--meshes", broken, *small], "exited with"),
                 (["--meshes", os.path.join(tmp, "nope.obj")], "nope.obj: no such file"),
                 (["--meshes", meshes, "--threads", "1,x"], "not a list of integers"),
-                (["--meshes", meshes, "--rounds", "0"], "--rounds must be at least 1")):
+                (["--meshes", meshes, "--rounds", "0"], "--rounds must be at least 1"),
+                (["--meshes", meshes, "--pin", "100000"], "is not one this process may run on")):
             p = run(script, "--penumbra", cli, *args, "--json", bad_out)
             if p.returncode == 0 or words not in p.stderr:
                 fail(f"{args}: exit {p.returncode}, {p.stderr}")
