@@ -74,11 +74,27 @@ def main():
 
         # --pin: the one-thread runs in a process of their own, bound to the CPU, merged
         # with the other thread counts' runs.
+        # A stand-in executable logs each run's thread count and the CPUs it may use, then
+        # runs penumbra.
         cpu = min(os.sched_getaffinity(0))
-        p = run(script, "--penumbra", cli, "--meshes", meshes, "--threads", "1,2", *small[2:],
+        everyone = ",".join(map(str, sorted(os.sched_getaffinity(0))))
+        log, fake = os.path.join(tmp, "affinity.log"), os.path.join(tmp, "fake_penumbra")
+        real = os.path.abspath(cli)
+        with open(fake, "w") as f:
+            f.write(f"#!{sys.executable}\nimport os, sys\n"
+                    f"with open({log!r}, 'a') as f:\n"
+                    f"    cpus = ','.join(map(str, sorted(os.sched_getaffinity(0))))\n"
+                    f"    f.write(sys.argv[4] + ' ' + cpus + '\\n')\n"
+                    f"os.execv({real!r}, [{real!r}] + sys.argv[1:])\n")
+        os.chmod(fake, 0o755)
+        p = run(script, "--penumbra", fake, "--meshes", meshes, "--threads", "1,2", *small[2:],
                 "--rounds", "1", "--pin", str(cpu), "--json", out)
         if p.returncode != 0:
             fail(f"--pin {cpu}: exit {p.returncode}: {p.stderr}")
+        runs = [line.split() for line in open(log).read().splitlines()]
+        want = [["2", everyone], ["1", str(cpu)], ["1", str(cpu)]] * 2  # two meshes
+        if runs != want:
+            fail(f"--pin {cpu}: runs (threads, CPUs) {runs}, expected {want}")
         for word in ("bvh over kdtree, 1 thr", "bvh over kdtree, 2 thr"):
             if word not in p.stdout:
                 fail(f"--pin: '{word}' missing from the report:\n{p.stdout}")
