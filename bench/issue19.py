@@ -25,8 +25,8 @@ Usage:
 --pin CPU runs every one-thread measurement as a process of its own bound to that CPU (the
 other thread counts in another process, unbound), so that the scheduler does not move it and a
 CPU known to be slower can be left out. It does not remove a machine's slow episodes: on the
-Zen 4 of docs/accel.md ("2026-12-07, twenty-first session") they slowed `bvh` by up to 42 %
-and Embree in the same process hardly at all, bound or not.
+Zen 4 of docs/accel.md ("2026-12-07, twenty-first session") they slowed one side of the pair in
+a process, mostly `bvh` (by up to 42 %), bound or not.
 
 The default meshes are the issue's five: bunny.obj, human_blend.obj, cylinder_engine.obj and
 spheres-1m.ply from --scenes, and the terrain of bench/make_terrain.py (--terrain, or written to
