@@ -141,17 +141,19 @@ def measure(args, tmp):
         for mesh, name in zip(args.mesh_list, names):
             if args.pin is not None and 1 in args.thread_list and args.thread_list != [1]:
                 # The other thread counts' process gives the rows (built with the most
-                # threads); the bound one-thread process adds its runs.
+                # threads); the bound one-thread process adds its runs and, having built at
+                # one thread, the build times at one thread.
                 rest = ",".join(str(t) for t in args.thread_list if t != 1)
                 full = accel_bench(args, mesh, rest, out, bench)
                 pinned = accel_bench(args, mesh, "1", out, bench)
                 for accel, row in full.items():
                     row["runs"] = pinned[accel]["runs"] + row["runs"]
+                rows = {"full": full, "one": pinned}
             else:
                 full = accel_bench(args, mesh, ",".join(map(str, args.thread_list)), out, bench)
-            rows = {"full": full}
-            if args.thread_list != [1]:
-                rows["one"] = accel_bench(args, mesh, "1", out, builds)
+                rows = {"full": full}
+                if args.thread_list != [1]:
+                    rows["one"] = accel_bench(args, mesh, "1", out, builds)
             got[name] = rows
         rounds.append(got)
         print(f"round {r + 1} of {args.rounds} done", file=sys.stderr, flush=True)

@@ -72,10 +72,9 @@ def main():
             if len(inc) != 1 or inc[0]["met"] != want:
                 fail(f"incoherent verdict {inc}, expected met = {want}")
 
-        # --pin: the one-thread runs in a process of their own, bound to the CPU, merged
-        # with the other thread counts' runs.
-        # A stand-in executable logs each run's thread count and the CPUs it may use, then
-        # runs penumbra.
+        # --pin: the one-thread runs in a process of their own, bound to the CPU, merged with
+        # the other thread counts' runs. A stand-in executable logs each run's thread count and
+        # the CPUs it may use, then runs penumbra.
         cpu = min(os.sched_getaffinity(0))
         everyone = ",".join(map(str, sorted(os.sched_getaffinity(0))))
         log, fake = os.path.join(tmp, "affinity.log"), os.path.join(tmp, "fake_penumbra")
@@ -92,7 +91,7 @@ def main():
         if p.returncode != 0:
             fail(f"--pin {cpu}: exit {p.returncode}: {p.stderr}")
         runs = [line.split() for line in open(log).read().splitlines()]
-        want = [["2", everyone], ["1", str(cpu)], ["1", str(cpu)]] * 2  # two meshes
+        want = [["2", everyone], ["1", str(cpu)]] * 2  # two meshes, one process per count
         if runs != want:
             fail(f"--pin {cpu}: runs (threads, CPUs) {runs}, expected {want}")
         for word in ("bvh over kdtree, 1 thr", "bvh over kdtree, 2 thr"):
