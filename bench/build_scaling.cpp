@@ -2,8 +2,10 @@
 /// (bench/terrain.h) from 10^4 to 10^7 triangles: the O(N log N) curve. Not a Google Benchmark
 /// loop: each structure builds at each size (the median of 3 builds below 10^6 triangles, one
 /// above) until a build takes longer than `--budget` seconds (default 20; the next size would
-/// take about ten times as long) or the structure refuses the size (its own memory caps). Prints
-/// one table and, with --json FILE, writes the rows.
+/// take about ten times as long) or the structure refuses the size (its own memory caps). With
+/// Embree built in, `embree` (Embree 3's default build of the same triangles, as accel-bench
+/// times it) is measured too, the reference of issue #19's build target. Prints one table and,
+/// with --json FILE, writes the rows (bench/plot_build_scaling.py draws them).
 ///   build/build_scaling [--threads N] [--budget S] [--accel a,b,...] [--json FILE]
 #include <algorithm>
 #include <cmath>
@@ -16,6 +18,7 @@
 #include <sys/resource.h>
 
 #include "penumbra/accel/registry.h"
+#include "penumbra/app/embree_scene.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/parallel.h"
 #include "penumbra/core/timer.h"
@@ -81,8 +84,23 @@ int main(int argc, char** argv) {
   if (accels.empty()) {
     for (const auto& info : accelerator_list())
       if (info.name != "brute") names.push_back(info.name);  // brute has no build to measure
+    if (app::have_embree()) names.emplace_back("embree");
   } else {
     names = split(accels);
+  }
+  for (const std::string& name : names) {
+    if (name == "embree" && !app::have_embree()) {
+      std::fprintf(stderr, "embree: not built in (install Embree 3 and rebuild)\n");
+      return 2;
+    }
+    if (name != "embree") {
+      try {
+        make_accelerator(name);  // an unknown name or parameter before any build
+      } catch (const Error& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+      }
+    }
   }
   const ThreadLimit limit(threads);
   std::vector<Row> rows;
@@ -91,8 +109,9 @@ int main(int argc, char** argv) {
   std::printf("%-14s %10s %10s %8s %12s %10s\n", "accel", "triangles", "build ms", "ns/tri",
               "ns/(t log N)", "faults");
   for (const int side : kSides) {
+    const TriangleMesh mesh = bench::terrain(side);
     PrimitiveSet prims;
-    prims.add_mesh(bench::terrain(side), Transform(), 0);
+    prims.add_mesh(mesh, Transform(), 0);
     const size_t n = prims.size();
     for (size_t k = 0; k < names.size(); ++k) {
       if (stopped[k]) continue;
@@ -101,11 +120,17 @@ int main(int argc, char** argv) {
       long faults = 0;
       try {
         for (int b = 0; b < builds; ++b) {
-          auto accel = make_accelerator(names[k]);
           const long f0 = minor_faults();
-          const Timer t;
-          accel->build(prims);
-          ms.push_back(t.elapsed_ms());
+          if (names[k] == "embree") {
+            // Its own wall time of buffers, geometry and commit, as accel-bench reports it.
+            const app::EmbreeScene scene(mesh, threads);
+            ms.push_back(scene.build_ms());
+          } else {
+            auto accel = make_accelerator(names[k]);
+            const Timer t;
+            accel->build(prims);
+            ms.push_back(t.elapsed_ms());
+          }
           faults = minor_faults() - f0;  // the last build's
         }
       } catch (const Error& e) {  // a structure's own limit (bsp's fragment cap): noted, skipped
