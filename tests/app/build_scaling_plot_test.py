@@ -56,6 +56,10 @@ def main():
         p = run(script, one, "--out", out, "--title", "terrain & co")
         if p.returncode != 0:
             fail(f"exit {p.returncode}: {p.stderr}")
+        umask = os.umask(0)
+        os.umask(umask)
+        if os.stat(out).st_mode & 0o777 != 0o666 & ~umask:
+            fail(f"mode {oct(os.stat(out).st_mode & 0o777)}, not a new file's usual one")
         root, lines = series(out)
         if sorted(lines) != ["bvh", "embree", "kdtree"]:
             fail(f"lines {sorted(lines)}")
