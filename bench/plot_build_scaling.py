@@ -15,7 +15,8 @@ Usage:
 Several files are merged: a structure measured at several thread counts gets one line per count
 ("bvh, 2 threads"), and one measured several times at the same size and thread count (repeated
 runs of build_scaling, whose builds of a million triangles or more are single) gets the median
-of its builds there. `--accel` keeps the structures named, in that order. Bad input (a file that cannot be read, not
+of its builds there. `--accel` keeps the structures named (as build_scaling names them, without
+the thread count), in that order. Bad input (a file that cannot be read, not
 JSON, a row without `accel`, `triangles` or `build_ms`, a value that is not a positive number)
 is reported with the file and the row and exits with status 1, writing nothing. The SVG is
 written through a temporary file and a rename: no partial file.
@@ -41,8 +42,9 @@ class InputError(Exception):
     pass
 
 
-def load_rows(paths):
-    """Every row of every file as (label, triangles, ns per triangle)."""
+def load_rows(paths, only=None):
+    """Every row of every file as (label, triangles, ns per triangle); with `only`, the rows of
+    those structures, in that order (then by thread count)."""
     rows = []
     for path in paths:
         try:
@@ -76,6 +78,14 @@ def load_rows(paths):
                          row["build_ms"] * 1e6 / row["triangles"]))
     if not rows:
         raise InputError(f"{', '.join(paths)}: no rows to plot")
+    if only:
+        present = list(dict.fromkeys(a for a, _, _, _ in rows))
+        missing = [a for a in only if a not in present]
+        if missing:
+            raise InputError(f"--accel: no rows for {', '.join(missing)} "
+                             f"(the files hold {', '.join(present)})")
+        rows = sorted((r for r in rows if r[0] in only),
+                      key=lambda r: (only.index(r[0]), r[1] is None, r[1] or 0))
     # A thread count in the label only where the rows have several.
     counts = {t for _, t, _, _ in rows}
     labelled = []
@@ -93,18 +103,12 @@ def median(values):
     return v[h] if len(v) % 2 else 0.5 * (v[h - 1] + v[h])
 
 
-def series(rows, only=None):
-    """Labels in first-seen order (or the order of `only`), each with its points sorted by
-    triangles; repeated measurements of a label at one size reduced to their median."""
+def series(rows):
+    """Labels in first-seen order, each with its points sorted by triangles; repeated
+    measurements of a label at one size reduced to their median."""
     grouped = {}
     for label, n, ns in rows:
         grouped.setdefault(label, {}).setdefault(n, []).append(ns)
-    if only:
-        missing = [a for a in only if a not in grouped]
-        if missing:
-            raise InputError(f"--accel: no rows for {', '.join(missing)} "
-                             f"(the files hold {', '.join(grouped)})")
-        grouped = {a: grouped[a] for a in only}
     return {label: sorted((n, median(v)) for n, v in by_n.items())
             for label, by_n in grouped.items()}
 
@@ -235,7 +239,7 @@ def main(argv):
     args = p.parse_args(argv)
     try:
         only = [a for a in args.accel.split(",") if a]
-        lines = series(load_rows(args.json), only)
+        lines = series(load_rows(args.json, only))
         text = svg(lines, args.title)
         write_atomically(args.out, text)
     except InputError as e:

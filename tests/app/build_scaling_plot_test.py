@@ -96,6 +96,11 @@ def main():
         _, lines = series(out)
         if "bvh, 1 thread" not in lines or "kdtree, 2 threads" not in lines or len(lines) != 6:
             fail(f"two thread counts: lines {sorted(lines)}")
+        p = run(script, two, one, "--out", out, "--accel", "kdtree,embree")
+        _, lines = series(out)
+        order = ["kdtree, 1 thread", "kdtree, 2 threads", "embree, 1 thread", "embree, 2 threads"]
+        if list(lines) != order:
+            fail(f"--accel kdtree,embree over two thread counts: lines {list(lines)}")
 
         # Repeated runs: the median of each size; --accel keeps the named ones, in its order.
         runs = []
