@@ -74,6 +74,9 @@ def load_rows(paths, only=None):
                         math.isfinite(v) and v > 0):
                     raise InputError(f"{where}: '{key}' is {v!r}, not a positive number")
             threads = row.get("threads")
+            if threads is not None and (isinstance(threads, bool) or not isinstance(threads, int)
+                                        or threads < 1):
+                raise InputError(f"{where}: 'threads' is {threads!r}, not a thread count")
             rows.append((accel, threads, float(row["triangles"]),
                          row["build_ms"] * 1e6 / row["triangles"]))
     if not rows:

@@ -132,6 +132,8 @@ def main():
             (json.dumps([{"accel": "bvh", "triangles": 10, "build_ms": "fast"}]),
              "'build_ms' is 'fast'"),
             (json.dumps({"accel": "bvh"}), "expected an array"),
+            (json.dumps([{"accel": "bvh", "triangles": 10, "build_ms": 1, "threads": "two"}]),
+             "row 0: 'threads' is 'two'"),
             (json.dumps([]), "no rows"),
         ]
         for text, expected in cases:
