@@ -26,8 +26,8 @@ import argparse
 import json
 import math
 import os
+import statistics
 import sys
-import tempfile
 from xml.sax.saxutils import escape
 
 # Colours that stay apart in print and for the common colour-vision deficiencies (Okabe & Ito).
@@ -100,19 +100,13 @@ def load_rows(paths, only=None):
     return labelled
 
 
-def median(values):
-    v = sorted(values)
-    h = len(v) // 2
-    return v[h] if len(v) % 2 else 0.5 * (v[h - 1] + v[h])
-
-
 def series(rows):
     """Labels in first-seen order, each with its points sorted by triangles; repeated
     measurements of a label at one size reduced to their median."""
     grouped = {}
     for label, n, ns in rows:
         grouped.setdefault(label, {}).setdefault(n, []).append(ns)
-    return {label: sorted((n, median(v)) for n, v in by_n.items())
+    return {label: sorted((n, statistics.median(v)) for n, v in by_n.items())
             for label, by_n in grouped.items()}
 
 
@@ -189,7 +183,9 @@ def svg(lines, title):
         pts = " ".join(f"{px(n):.1f},{py(v):.1f}" for n, v in ref)
         out.append(f'<polyline class="reference" points="{pts}" fill="none" stroke="#888" '
                    f'stroke-dasharray="2 3"/>')
-    # One line per structure, with its legend entry.
+    # One line per structure, with its legend entry. Past eight lines the colours repeat, with
+    # the next marker shape.
+    lx = LEFT + pw + 16  # the legend's left edge
     for k, (label, pts) in enumerate(lines.items()):
         colour = COLOURS[k % len(COLOURS)]
         shape = MARKERS[(k // len(COLOURS) + k) % len(MARKERS)]
@@ -200,7 +196,6 @@ def svg(lines, title):
                    f'stroke-width="2"{dash}/>')
         out.extend(marker(shape, px(n), py(ns), colour) for n, ns in pts)
         ly = TOP + 10 + 20 * k
-        lx = LEFT + pw + 16
         out.append(f'<line x1="{lx}" y1="{ly}" x2="{lx + 24}" y2="{ly}" stroke="{colour}" '
                    f'stroke-width="2"{dash}/>')
         out.append(marker(shape, lx + 12, ly, colour))
@@ -208,7 +203,6 @@ def svg(lines, title):
         out.append("</g>")
     ly = TOP + 10 + 20 * len(lines)
     if len(ref) > 1:
-        lx = LEFT + pw + 16
         out.append(f'<line x1="{lx}" y1="{ly}" x2="{lx + 24}" y2="{ly}" stroke="#888" '
                    f'stroke-dasharray="2 3"/>')
         out.append(f'<text x="{lx + 32}" y="{ly + 4}">∝ log2 N</text>')
@@ -217,14 +211,10 @@ def svg(lines, title):
 
 
 def write_atomically(path, text):
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=folder, prefix=".plot-", suffix=".svg")
+    """`text` to `path` through PATH.tmp and a rename, as issue19.py and ab_accel.py write."""
+    tmp = path + ".tmp"
     try:
-        # mkstemp makes the file private (0600); the plot gets a new file's usual mode.
-        umask = os.umask(0)
-        os.umask(umask)
-        os.fchmod(fd, 0o666 & ~umask)
-        with os.fdopen(fd, "w", encoding="utf-8") as f:
+        with open(tmp, "w", encoding="utf-8") as f:
             f.write(text)
         os.replace(tmp, path)
     except BaseException:

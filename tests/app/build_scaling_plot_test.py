@@ -149,7 +149,7 @@ def main():
         p = run(script, os.path.join(tmp, "missing.json"), "--out", os.path.join(tmp, "m.svg"))
         if p.returncode != 1 or "missing.json: cannot read" not in p.stderr:
             fail(f"missing file: exit {p.returncode}, {p.stderr!r}")
-        if [f for f in os.listdir(tmp) if f.startswith(".plot-")]:
+        if [f for f in os.listdir(tmp) if f.endswith(".tmp")]:
             fail("a temporary file was left behind")
     print("ok")
 
