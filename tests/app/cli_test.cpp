@@ -19,6 +19,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "penumbra/accel/registry.h"
 #include "penumbra/core/target.h"
 #include "penumbra/image/pfm.h"
 
@@ -183,9 +184,13 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
     for (const auto& row : rows) {
       for (const char* key : {"accel", "mesh", "triangles", "build_ms", "build_threads", "bytes"})
         EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
-      // The vectors the code was compiled for (the program and this test share the flags).
-      EXPECT_EQ(row["vectors"], compiled_vectors()) << row.dump();
-      if (row["accel"] == "embree") continue;
+      // The vectors of the structure's code: for Embree, the program's (the program and this
+      // test share the flags); for a structure, the copy isa=auto picks on this CPU.
+      if (row["accel"] == "embree") {
+        EXPECT_EQ(row["vectors"], compiled_vectors()) << row.dump();
+        continue;
+      }
+      EXPECT_EQ(row["vectors"], make_accelerator("bvh")->vectors()) << row.dump();
       ++structures;
       for (const char* key : {"nodes", "depth", "refs_per_prim"})
         EXPECT_TRUE(row.contains(key)) << key << " in " << row.dump();
@@ -200,9 +205,26 @@ TEST_F(CliTest, AccelBenchWritesAJsonRowPerStructure) {
     }
     EXPECT_EQ(structures, 2u);
     EXPECT_NE(out_.find("Mrays/s"), std::string::npos) << out_;
-    EXPECT_NE(out_.find(std::string("; code compiled for ") + compiled_vectors() + "\n"),
+    EXPECT_NE(out_.find(std::string("; program compiled for ") + compiled_vectors() + "\n"),
               std::string::npos)
         << out_;
+  }
+  // isa=sse2, where the build holds that copy: its row says so, and so does the header.
+  if (!isa_levels().empty()) {
+    ASSERT_EQ(
+        run("accel-bench " + scene("meshes/bunny.obj") +
+            " --accel bvh:isa=sse2 --threads 1 --repeat 1 --rays 100 --json " + path("isa.json")),
+        0)
+        << err_;
+    const auto rows = nlohmann::json::parse(slurp(path("isa.json")));
+    bool seen = false;
+    for (const auto& row : rows) {
+      if (row["accel"] != "bvh:isa=sse2") continue;
+      EXPECT_EQ(row["vectors"], "SSE2");
+      seen = true;
+    }
+    EXPECT_TRUE(seen) << rows.dump();
+    EXPECT_NE(out_.find("structures' code: SSE2 (bvh:isa=sse2)\n"), std::string::npos) << out_;
   }
   // --image sets the primary rays: 32 x 32 of them.
   ASSERT_EQ(run("accel-bench " + scene("meshes/bunny.obj") +

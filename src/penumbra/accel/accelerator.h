@@ -10,6 +10,7 @@
 
 #include "penumbra/accel/traversal_cost.h"
 #include "penumbra/core/ray.h"
+#include "penumbra/core/target.h"
 #include "penumbra/geometry/hit.h"
 #include "penumbra/geometry/primitive_set.h"
 
@@ -71,6 +72,10 @@ class Accelerator {
   virtual bool occluded_cost(const Ray& ray, TraversalCost& cost) const = 0;
   /// Statistics of the last build.
   virtual AccelStats stats() const = 0;
+  /// The instruction set the structure's code was compiled for (compiled_vectors(): "AVX-512",
+  /// "AVX2", "SSE2", ...): the build's target, or the level `isa=` chose when the program ran
+  /// (registry.h). Inline, so each level's copy of the code reports its own.
+  virtual const char* vectors() const { return compiled_vectors(); }
 };
 
 }  // namespace penumbra

@@ -4,7 +4,9 @@
 
 namespace penumbra {
 
-BruteForce::BruteForce(const ParamList& params) { params.check_all_used(); }
+BruteForce::BruteForce(const ParamList& params) : name_(params.to_string()) {
+  params.check_all_used();
+}
 
 void BruteForce::build(const PrimitiveSet& prims) {
   const Timer timer;

@@ -6,11 +6,11 @@
 
 namespace penumbra {
 
-/// Brute-force "structure": no parameters.
+/// Brute-force "structure": no parameters of its own (`isa=` is every structure's: registry.h).
 class BruteForce final : public Accelerator {
  public:
   explicit BruteForce(const ParamList& params);
-  std::string name() const override { return "brute"; }
+  std::string name() const override { return name_; }
   void build(const PrimitiveSet& prims) override;
   bool intersect(const Ray& ray, Hit& hit) const override;
   bool occluded(const Ray& ray) const override;
@@ -19,6 +19,7 @@ class BruteForce final : public Accelerator {
   AccelStats stats() const override { return stats_; }
 
  private:
+  std::string name_;
   const PrimitiveSet* prims_ = nullptr;
   std::vector<uint32_t> valid_;  ///< ids of primitives with finite bounds
   AccelStats stats_;

@@ -83,7 +83,7 @@ KdTree::KdTree(const ParamList& params) {
   params_.clip = !params.has("clip") || params.get_flag("clip");
   params.check_all_used();
   name_ = "kdtree:" + criterion;
-  for (const char* key : {"ct", "ci", "empty_bonus", "leaf", "depth", "clip"})
+  for (const char* key : {"ct", "ci", "empty_bonus", "leaf", "depth", "clip", "isa"})
     if (params.has(key)) name_ += fmt::format(",{}={}", key, params.get_string(key, ""));
 }
 

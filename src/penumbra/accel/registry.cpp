@@ -1,5 +1,6 @@
 #include "penumbra/accel/registry.h"
 
+#include <cstdlib>
 #include <functional>
 
 #include <fmt/format.h>
@@ -11,8 +12,10 @@
 #include "penumbra/accel/octree.h"
 #include "penumbra/accel/uniform_grid.h"
 #include "penumbra/accel/wide_bvh.h"
+#include "penumbra/core/cpu_check.h"
 #include "penumbra/core/error.h"
 #include "penumbra/core/registry.h"
+#include "penumbra/core/target.h"
 
 namespace penumbra {
 
@@ -127,11 +130,128 @@ const Registry<Factory>& registry() {
       {"kdtree",
        "kd-tree, O(N log N) SAH build with perfect splits (sah|median|gap, ct=1, ci=0.4 per block)",
        create<KdTree>},
+#if defined(PENUMBRA_HAVE_ISA_SSE2)
+      // The copy of the code for the x86-64 baseline, listed so that the differential, batch
+      // and rendering tests cover it on every machine (registry.h, isa=).
+      {"bvh:isa=sse2",
+       "bvh compiled for SSE2 (the x86-64 baseline), chosen when the program runs: 4-wide",
+       create_bvh},
+      {"kdtree:sah,isa=sse2", "kdtree compiled for SSE2 (the x86-64 baseline)", create<KdTree>},
+#endif
   };
   return all;
 }
 
+/// The structure named by `params` as this copy of the code builds it. `isa` was the
+/// dispatcher's (make_accelerator): read here so that the name keeps it.
+std::unique_ptr<Accelerator> make_here(const ParamList& params) {
+  (void)params.get_string("isa", "auto");
+  if (const Factory* make = registry().find(params.name())) return (*make)(params);
+  const std::string names = registry().valid_names(  // not the listed variants
+      [](const std::string& name) { return name.find(':') == std::string::npos; });
+  throw Error(fmt::format("unknown acceleration structure '{}' (valid: {})", params.name(), names));
+}
+
 }  // namespace
+
+#if defined(PENUMBRA_ISA_LEVEL)
+// This file compiled again for one instruction-set level (CMakeLists.txt): the level's two
+// entry points, the only symbols its object leaves global.
+#define PENUMBRA_ISA_CAT2(a, b, c) a##b##c
+#define PENUMBRA_ISA_CAT(a, b, c) PENUMBRA_ISA_CAT2(a, b, c)
+#define PENUMBRA_ISA_ENTRY(what) PENUMBRA_ISA_CAT(penumbra_isa_, PENUMBRA_ISA_LEVEL, _##what)
+
+extern "C" Accelerator* PENUMBRA_ISA_ENTRY(make)(const char* spec, size_t size) {
+  return make_here(ParamList::parse(std::string_view(spec, size))).release();
+}
+
+extern "C" int PENUMBRA_ISA_ENTRY(missing)(const char* lacks, const char** out) {
+  return missing_cpu_features(lacks, out);
+}
+
+#else
+// The levels compiled into the program (CMakeLists.txt defines PENUMBRA_HAVE_ISA_*).
+#define PENUMBRA_ISA_DECLARE(level)                                         \
+  extern "C" Accelerator* penumbra_isa_##level##_make(const char*, size_t); \
+  extern "C" int penumbra_isa_##level##_missing(const char*, const char**);
+#if defined(PENUMBRA_HAVE_ISA_SSE2)
+PENUMBRA_ISA_DECLARE(sse2)
+#endif
+#if defined(PENUMBRA_HAVE_ISA_AVX2)
+PENUMBRA_ISA_DECLARE(avx2)
+#endif
+#if defined(PENUMBRA_HAVE_ISA_AVX512)
+PENUMBRA_ISA_DECLARE(avx512)
+#endif
+
+namespace {
+
+/// A level the structures were compiled for besides the build's own target.
+struct IsaLevel {
+  const char* name;  ///< what isa= takes
+  int rank;          ///< wider vectors rank higher (isa_rank)
+  Accelerator* (*make)(const char*, size_t);
+  int (*missing)(const char*, const char**);
+};
+
+/// The levels compiled in, in increasing width.
+const std::vector<IsaLevel>& compiled_levels() {
+  static const std::vector<IsaLevel> levels = [] {
+    std::vector<IsaLevel> l;
+#if defined(PENUMBRA_HAVE_ISA_SSE2)
+    l.push_back({"sse2", 10, penumbra_isa_sse2_make, penumbra_isa_sse2_missing});
+#endif
+#if defined(PENUMBRA_HAVE_ISA_AVX2)
+    l.push_back({"avx2", 30, penumbra_isa_avx2_make, penumbra_isa_avx2_missing});
+#endif
+#if defined(PENUMBRA_HAVE_ISA_AVX512)
+    l.push_back({"avx512", 40, penumbra_isa_avx512_make, penumbra_isa_avx512_missing});
+#endif
+    return l;
+  }();
+  return levels;
+}
+
+/// The rank of compiled_vectors() names, as IsaLevel::rank.
+int isa_rank(std::string_view vectors) {
+  if (vectors == "AVX-512") return 40;
+  if (vectors == "AVX2") return 30;
+  if (vectors == "AVX") return 20;
+  if (vectors == "SSE4.2") return 11;
+  if (vectors == "SSE2") return 10;
+  return 0;
+}
+
+/// The extensions level `l` needs that this CPU lacks (or `lacks` names), comma-separated.
+std::string isa_missing(const IsaLevel& l, const char* lacks) {
+  const char* out[kMaxCpuFeatures];
+  const int n = l.missing(lacks, out);
+  std::string list;
+  for (int i = 0; i < n; ++i) list += (i ? ", " : "") + std::string(out[i]);
+  return list;
+}
+
+const IsaLevel* find_isa(std::string_view name) {
+  for (const IsaLevel& l : compiled_levels())
+    if (name == l.name) return &l;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> isa_levels() {
+  std::vector<std::string> names;
+  for (const IsaLevel& l : compiled_levels()) names.emplace_back(l.name);
+  return names;
+}
+
+std::string isa_auto(const char* lacks) {
+  const IsaLevel* best = nullptr;
+  int rank = isa_rank(compiled_vectors());  // the build's own code wins ties
+  for (const IsaLevel& l : compiled_levels())
+    if (l.rank > rank && isa_missing(l, lacks).empty()) best = &l, rank = l.rank;
+  return best ? best->name : "native";
+}
 
 const std::vector<AccelInfo>& accelerator_list() {
   static const std::vector<AccelInfo> list = [] {
@@ -144,10 +264,22 @@ const std::vector<AccelInfo>& accelerator_list() {
 
 std::unique_ptr<Accelerator> make_accelerator(std::string_view spec) {
   const ParamList params = ParamList::parse(spec);
-  if (const Factory* make = registry().find(params.name())) return (*make)(params);
-  const std::string names = registry().valid_names(  // not the listed variants
-      [](const std::string& name) { return name.find(':') == std::string::npos; });
-  throw Error(fmt::format("unknown acceleration structure '{}' (valid: {})", params.name(), names));
+  const char* lacks = std::getenv("PENUMBRA_CPU_LACKS");  // the start-up check's test hook
+  std::string isa = params.get_string("isa", "auto");
+  if (isa == "auto") isa = isa_auto(lacks);
+  if (isa == "native") return make_here(params);
+  const IsaLevel* level = find_isa(isa);
+  if (!level) {
+    std::string valid = "auto, native";
+    for (const std::string& name : isa_levels()) valid += ", " + name;
+    throw Error(
+        fmt::format("{}: parameter 'isa' must be one of {}, got '{}'", params.name(), valid, isa));
+  }
+  if (const std::string missing = isa_missing(*level, lacks); !missing.empty())
+    throw Error(
+        fmt::format("{}: isa={} needs {}, which this CPU lacks", params.name(), isa, missing));
+  return std::unique_ptr<Accelerator>(level->make(spec.data(), spec.size()));
 }
+#endif
 
 }  // namespace penumbra

@@ -394,8 +394,8 @@ void run_accel_bench(const AccelBenchArgs& args) {
   PrimitiveSet prims;
   prims.add_mesh(mesh, Transform(), 0);
   fmt::print(
-      "{}: {} triangles, loaded in {:.0f} ms; builds on {} thread(s), rays traced on {}; code "
-      "compiled for {}\n",
+      "{}: {} triangles, loaded in {:.0f} ms; builds on {} thread(s), rays traced on {}; "
+      "program compiled for {}\n",
       args.input, mesh.triangle_count(), load_timer.elapsed_ms(), build_threads,
       fmt::join(threads, " and "), compiled_vectors());
 
@@ -414,6 +414,10 @@ void run_accel_bench(const AccelBenchArgs& args) {
   }
   std::vector<std::unique_ptr<Accelerator>> accels;
   for (const auto& s : specs) accels.push_back(make_accelerator(s));  // reject bad names first
+  // The code each structure runs (isa=: the build's own, or a level chosen when it runs).
+  std::vector<std::string> codes;
+  for (const auto& a : accels) codes.push_back(fmt::format("{} ({})", a->vectors(), a->name()));
+  if (!codes.empty()) fmt::print("structures' code: {}\n", fmt::join(codes, ", "));
   // The --versus structure by the name its row will have.
   std::string versus;
   if (!args.versus.empty()) {
@@ -501,6 +505,7 @@ void run_accel_bench(const AccelBenchArgs& args) {
     auto& accel = accels[a];
     BenchRow row;
     row.accel = accel->name();
+    row.vectors = accel->vectors();
     {
       const ThreadLimit build_limit(build_threads);
       std::vector<double> ms;

@@ -177,7 +177,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
                         {"build_ms", r.build_ms},
                         {"build_threads", build_threads},
                         {"queries", batch ? "batch" : "single"},
-                        {"vectors", compiled_vectors()},
+                        {"vectors", r.vectors.empty() ? compiled_vectors() : r.vectors},
                         {"bytes", r.bytes},
                         {"runs", runs}};
     if (!embree_mode.empty()) o["embree_mode"] = embree_mode;

@@ -35,6 +35,7 @@ struct BenchCounts {
 /// mode).
 struct BenchRow {
   std::string accel;                    ///< name with parameters, or "embree"
+  std::string vectors;  ///< the code's instruction set (Accelerator::vectors()); empty for Embree
   double build_ms = 0;                  ///< wall time of the build
   size_t bytes = 0;                     ///< memory of the structure
   std::optional<size_t> nodes, depth;   ///< unknown for Embree

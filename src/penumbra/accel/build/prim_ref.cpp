@@ -104,7 +104,7 @@ PrimRefs make_prim_refs(const PrimitiveSet& prims, size_t spare) {
   out.refs.resize(n);
   std::vector<ChunkTotals> totals(chunks);
   // Boxes per chunk, written at the primitive's own index; invalid ones are marked by id.
-  const bool triangles = prims.all_triangles();
+  [[maybe_unused]] const bool triangles = prims.all_triangles();  // used with SSE4.1
   parallel_for(chunks, [&](size_t c) {
     const size_t begin = c * kChunk, end = std::min(n, begin + kChunk);
 #if defined(__SSE4_1__)
