@@ -1,9 +1,11 @@
 #pragma once
-/// What the code was compiled for and what it runs on. Penumbra chooses its SIMD code when it is
-/// compiled, not when it runs, so compiled_vectors(), not the machine's CPU, is what a benchmark's
-/// figures were measured with (a portable SSE2 build on an AVX-512 machine runs SSE2 code;
-/// docs/accel.md, "2026-12-06, fifteenth session"); cpu_is_intel() and cpu_has_avx512() are for
-/// the few defaults that depend on the core that runs the program.
+/// What the code was compiled for and what it runs on. A translation unit's SIMD code is chosen
+/// when it is compiled, so compiled_vectors(), not the machine's CPU, says what it runs (a
+/// portable SSE2 build on an AVX-512 machine runs SSE2 code; docs/accel.md, "2026-12-06,
+/// fifteenth session"). The acceleration structures are also compiled for several levels, one
+/// of which is chosen when the program runs (accel/registry.h, `isa=`): their figures were
+/// measured with Accelerator::vectors(). cpu_is_intel() and cpu_has_avx512() are for the few
+/// defaults that depend on the core that runs the program.
 namespace penumbra {
 
 /// "AVX-512", "AVX2", "AVX", "SSE4.2", "SSE2", "NEON" or "scalar": the widest of these the target
