@@ -627,15 +627,18 @@ TEST(Bvh, SmallSetsSplitTheirSmallNodesExactly) {
 }
 
 TEST(Bvh, DefaultWidthFollowsTheTarget) {
+  // The build's own code (isa=native; the copies for other levels are other classes).
 #if defined(__AVX__)
-  EXPECT_NE(dynamic_cast<const WideBvh<16>*>(make_accelerator("bvh").get()), nullptr);
+  EXPECT_NE(dynamic_cast<const WideBvh<16>*>(make_accelerator("bvh:isa=native").get()), nullptr);
 #else
-  EXPECT_NE(dynamic_cast<const WideBvh<4>*>(make_accelerator("bvh").get()), nullptr);
+  EXPECT_NE(dynamic_cast<const WideBvh<4>*>(make_accelerator("bvh:isa=native").get()), nullptr);
 #endif
-  EXPECT_NE(dynamic_cast<const WideBvh<8>*>(make_accelerator("bvh:order=octant").get()), nullptr);
-  using Compressed = WideBvh<8, CompressedNode>;
-  EXPECT_NE(dynamic_cast<const Compressed*>(make_accelerator("bvh:nodes=compressed").get()),
+  EXPECT_NE(dynamic_cast<const WideBvh<8>*>(make_accelerator("bvh:order=octant,isa=native").get()),
             nullptr);
+  using Compressed = WideBvh<8, CompressedNode>;
+  EXPECT_NE(
+      dynamic_cast<const Compressed*>(make_accelerator("bvh:nodes=compressed,isa=native").get()),
+      nullptr);
   // Leaves: 16 triangles in one leaf of the 16-wide tree, at most 8 in the 8-wide one's.
   TriangleMesh m;
   for (int i = 0; i < 16; ++i) {
@@ -655,6 +658,18 @@ TEST(Bvh, DefaultWidthFollowsTheTarget) {
   // The width is reported with the other figures (accel-bench prints it).
   EXPECT_EQ(extra_stat(*wide, "width"), 16.0);
   EXPECT_EQ(extra_stat(*narrow, "width"), 8.0);
+  // Each copy of the code for another level (isa=, registry.h) by its own target: 4 without
+  // AVX, else 16.
+  for (const std::string& level : isa_levels()) {
+    std::unique_ptr<Accelerator> copy;
+    try {
+      copy = make_accelerator("bvh:isa=" + level);
+    } catch (const Error&) {
+      continue;  // a level this CPU lacks
+    }
+    copy->build(prims);
+    EXPECT_EQ(extra_stat(*copy, "width"), level == "sse2" ? 4.0 : 16.0) << level;
+  }
 }
 
 // The 16-wide tree answers as brute force on a set large enough for several levels of 16-wide
@@ -774,7 +789,9 @@ TEST(WideBvh, MergedLeavesOfOtherPrimitivesHoldOnlyTheirReferences) {
   ASSERT_FALSE(s.prims.all_triangles());
   auto brute = make_accelerator("brute");
   brute->build(s.prims);
-  for (const char* spec : {"bvh:width=16,binleaf=2", "bvh:width=16,binleaf=0"}) {
+  // The build's own code (isa=native), whose WideBvh<16> the cast below names.
+  for (const char* spec :
+       {"bvh:width=16,binleaf=2,isa=native", "bvh:width=16,binleaf=0,isa=native"}) {
     auto accel = make_accelerator(spec);
     accel->build(s.prims);
     const auto* wide = dynamic_cast<const WideBvh<16>*>(accel.get());
