@@ -156,7 +156,23 @@ TEST(IsaDispatch, RefusesAnUnknownLevelAndOneTheCpuLacks) {
     EXPECT_NE(msg.find("'avx1024'"), std::string::npos) << msg;
     for (const std::string& level : isa_levels()) EXPECT_NE(msg.find(level), std::string::npos);
   }
+  // An unknown structure is that, whatever its isa; a copy's own errors reach the caller.
+  try {
+    make_accelerator("kdtre:isa=avx1024");
+    FAIL() << "kdtre accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown acceleration structure 'kdtre'"),
+              std::string::npos)
+        << e.what();
+  }
   if (isa_levels().empty()) return;
+  try {
+    make_accelerator("bvh:isa=sse2,width=3");
+    FAIL() << "width=3 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'width' must be 2, 4, 8 or 16"), std::string::npos)
+        << e.what();
+  }
   const CpuLacks lacks("avx512bw,avx2");
   for (const char* spec : {"bvh:isa=avx512", "grid:isa=avx2"}) {
     try {

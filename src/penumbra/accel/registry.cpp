@@ -130,26 +130,23 @@ const Registry<Factory>& registry() {
       {"kdtree",
        "kd-tree, O(N log N) SAH build with perfect splits (sah|median|gap, ct=1, ci=0.4 per block)",
        create<KdTree>},
-#if defined(PENUMBRA_HAVE_ISA_SSE2)
-      // The copy of the code for the x86-64 baseline, listed so that the differential, batch
-      // and rendering tests cover it on every machine (registry.h, isa=).
-      {"bvh:isa=sse2",
-       "bvh compiled for SSE2 (the x86-64 baseline), chosen when the program runs: 4-wide",
-       create_bvh},
-      {"kdtree:sah,isa=sse2", "kdtree compiled for SSE2 (the x86-64 baseline)", create<KdTree>},
-#endif
   };
   return all;
+}
+
+/// The factory of the structure `params` names; throws Error listing the valid names.
+const Factory& find_factory(const ParamList& params) {
+  if (const Factory* make = registry().find(params.name())) return *make;
+  const std::string names = registry().valid_names(  // not the listed variants
+      [](const std::string& name) { return name.find(':') == std::string::npos; });
+  throw Error(fmt::format("unknown acceleration structure '{}' (valid: {})", params.name(), names));
 }
 
 /// The structure named by `params` as this copy of the code builds it. `isa` was the
 /// dispatcher's (make_accelerator): read here so that the name keeps it.
 std::unique_ptr<Accelerator> make_here(const ParamList& params) {
   (void)params.get_string("isa", "auto");
-  if (const Factory* make = registry().find(params.name())) return (*make)(params);
-  const std::string names = registry().valid_names(  // not the listed variants
-      [](const std::string& name) { return name.find(':') == std::string::npos; });
-  throw Error(fmt::format("unknown acceleration structure '{}' (valid: {})", params.name(), names));
+  return find_factory(params)(params);
 }
 
 }  // namespace
@@ -257,6 +254,14 @@ const std::vector<AccelInfo>& accelerator_list() {
   static const std::vector<AccelInfo> list = [] {
     std::vector<AccelInfo> l;
     for (const auto& e : registry().entries()) l.push_back({e.name, e.description});
+    // The copies for the x86-64 baseline, listed so that `all` and the differential, batch and
+    // rendering tests cover them on every machine (isa=, registry.h).
+    if (find_isa("sse2")) {
+      l.push_back({"bvh:isa=sse2",
+                   "bvh compiled for SSE2 (the x86-64 baseline), chosen when the program runs: "
+                   "4-wide"});
+      l.push_back({"kdtree:sah,isa=sse2", "kdtree compiled for SSE2 (the x86-64 baseline)"});
+    }
     return l;
   }();
   return list;
@@ -264,7 +269,10 @@ const std::vector<AccelInfo>& accelerator_list() {
 
 std::unique_ptr<Accelerator> make_accelerator(std::string_view spec) {
   const ParamList params = ParamList::parse(spec);
-  const char* lacks = std::getenv("PENUMBRA_CPU_LACKS");  // the start-up check's test hook
+  // An unknown name is reported as such, whatever its isa.
+  (void)find_factory(params);
+  // PENUMBRA_CPU_LACKS: the start-up check's test hook (core/cpu_check.h).
+  const char* lacks = std::getenv("PENUMBRA_CPU_LACKS");
   std::string isa = params.get_string("isa", "auto");
   if (isa == "auto") isa = isa_auto(lacks);
   if (isa == "native") return make_here(params);

@@ -34,10 +34,10 @@ struct BenchCounts {
 /// The measurements of one structure (or of Embree: "embree", or "embree:robust" in its robust
 /// mode).
 struct BenchRow {
-  std::string accel;                    ///< name with parameters, or "embree"
+  std::string accel;    ///< name with parameters, or "embree"
   std::string vectors;  ///< the code's instruction set (Accelerator::vectors()); empty for Embree
-  double build_ms = 0;                  ///< wall time of the build
-  size_t bytes = 0;                     ///< memory of the structure
+  double build_ms = 0;  ///< wall time of the build
+  size_t bytes = 0;     ///< memory of the structure
   std::optional<size_t> nodes, depth;   ///< unknown for Embree
   std::optional<double> refs_per_prim;  ///< leaf references per primitive; unknown for Embree
   std::vector<BenchRates> rates;        ///< one per thread count, as the table's groups
