@@ -93,6 +93,16 @@ TEST_F(CliTest, SummaryReportsTimeRaysAndAccelStatistics) {
   EXPECT_NE(err_.find("Mrays/s"), std::string::npos) << err_;
   EXPECT_NE(err_.find("nodes"), std::string::npos) << err_;
   EXPECT_NE(err_.find("render:"), std::string::npos) << err_;  // plain progress lines off a tty
+  // The code the structure runs (isa=auto's choice, registry.h).
+  EXPECT_NE(err_.find(std::string("accel bvh (") + make_accelerator("bvh")->vectors() + " code): "),
+            std::string::npos)
+      << err_;
+  if (isa_levels().empty()) return;
+  ASSERT_EQ(run("render " + scene("cornell-box.json") +
+                " --resolution 16x16 --spp 1 --accel kdtree:isa=sse2 -o " + path("sse2.png")),
+            0)
+      << err_;
+  EXPECT_NE(err_.find("accel kdtree:sah,isa=sse2 (SSE2 code): "), std::string::npos) << err_;
 }
 
 TEST_F(CliTest, EveryImageFormatIsWritten) {

@@ -289,8 +289,8 @@ int run_render(const RenderArgs& args) {
                format_duration(stats.seconds), format_duration(wall.elapsed_s()), stats.passes,
                samples / secs * 1e-6, stats.rays, double(stats.rays) / secs * 1e-6,
                stats.traversal_share * 100.0);
-    fmt::print(stderr, "accel {}: {}\n", job.world->accelerator().name(),
-               format_accel_stats(accel));
+    fmt::print(stderr, "accel {} ({} code): {}\n", job.world->accelerator().name(),
+               job.world->accelerator().vectors(), format_accel_stats(accel));
     if (!stats.note.empty()) fmt::print(stderr, "{}\n", stats.note);
   }
   return 0;
