@@ -60,7 +60,7 @@ def compile_one(cxx, path, arch):
     cmd = [cxx, "-std=c++20", "-fsyntax-only", "-ffp-contract=off", f"-march={arch}",
            "-I", os.path.join(ROOT, "src"), "-isystem", "/usr/include/OpenEXR", "-isystem",
            "/usr/include/Imath", "-DPENUMBRA_TEST_DATA=\"\"", "-DPENUMBRA_SOURCE_DIR=\"\"",
-           "-DPENUMBRA_CLI=\"\"", path]
+           "-DPENUMBRA_CLI=\"\"", "-DPENUMBRA_TEST_ISA_LEVELS=\"\"", path]
     r = subprocess.run(cmd, capture_output=True, text=True)
     return path, arch, r.returncode, r.stderr
 
