@@ -58,6 +58,10 @@ const std::vector<Case>& family(const std::string& name) {
   if (name == "thin") scenes.emplace_back(thin_and_large(13), 100'000);
   if (name == "mixed") scenes.emplace_back(mixed_shapes(14), 100'000);
   if (name == "degenerate") scenes.emplace_back(degenerate_triangles(15), 100'000);
+  if (name == "coincident") {
+    scenes.emplace_back(coincident_surfaces(21, false), 60'000);
+    scenes.emplace_back(coincident_surfaces(22, true), 40'000);
+  }
   // Moving geometry (rays with times): every structure must bound primitives over the whole
   // time interval and test them at the ray's time.
   if (name == "moving_soup") scenes.emplace_back(moving_soup(1000, 16), 100'000);
@@ -229,6 +233,9 @@ TEST_P(AccelDifferential, ThinTinyAndHugeTriangles) {
 }
 TEST_P(AccelDifferential, SpheresQuadsAndTriangles) {
   run_family("mixed");
+}
+TEST_P(AccelDifferential, CoincidentCopiesOfEveryPrimitive) {
+  run_family("coincident");
 }
 TEST_P(AccelDifferential, DegenerateAndNonFiniteTriangles) {
   run_family("degenerate");

@@ -142,6 +142,48 @@ TestScene mixed_shapes(uint64_t seed) {
   return s;
 }
 
+TestScene coincident_surfaces(uint64_t seed, bool shapes) {
+  TestScene s{shapes ? "coincident_shapes" : "coincident_triangles", {}};
+  Pcg32 rng(seed, 9);
+  struct Item {
+    int kind;  // 0 triangle, 1 sphere, 2 parallelogram
+    Vec3 a, b, c;
+  };
+  std::vector<Item> items;
+  const auto triangle = [&](Vec3 a, Vec3 b, Vec3 c) {
+    items.push_back({0, a, b, c});
+    items.push_back({0, a, b, c});
+    if (rng.next_bounded(2)) items.push_back({0, b, c, a});
+  };
+  const TestScene room = room_with_boxes(20, seed);
+  for (uint32_t id = 0; id < room.prims.size(); ++id) {
+    const Vec3* v = room.prims.triangle(id);
+    triangle(v[0], v[1], v[2]);
+  }
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 a = random_vec(rng) * 10.0f;
+    triangle(a, a + random_dir(rng), a + random_dir(rng));
+  }
+  if (shapes) {
+    for (int i = 0; i < 100; ++i) {
+      const Item sphere{1, random_vec(rng) * 10.0f, Vec3(0.1f + rng.next_float()), {}};
+      const Item quad{2, random_vec(rng) * 10.0f, random_dir(rng), random_dir(rng)};
+      for (int k = 0; k < 2; ++k) items.push_back(sphere), items.push_back(quad);
+    }
+  }
+  for (size_t i = items.size(); i > 1; --i)
+    std::swap(items[i - 1], items[rng.next_bounded(uint32_t(i))]);
+  for (const Item& it : items) {
+    if (it.kind == 0)
+      add_triangle(s.prims, it.a, it.b, it.c);
+    else if (it.kind == 1)
+      s.prims.add_sphere({it.a, it.b.x}, 1);
+    else
+      s.prims.add_quad({it.a, it.b, it.c}, 2);
+  }
+  return s;
+}
+
 bool referenced_by_structures(const PrimitiveSet& prims, uint32_t id) {
   return !prims.prim_bounds(id).empty() && !never_hit(prims, id);
 }

@@ -28,6 +28,12 @@ TestScene room_with_boxes(int boxes, uint64_t seed, Vec3 offset = Vec3(0.0f));
 TestScene thin_and_large(uint64_t seed);
 /// Spheres, parallelograms and triangles together (not all triangles).
 TestScene mixed_shapes(uint64_t seed);
+/// Coincident surfaces: a room with boxes and a soup of triangles, each triangle two or three
+/// times (exact copies, and copies with their vertices rotated, whose t differs by rounding),
+/// added in a shuffled order so that a copy's id is as often below as above the original's.
+/// `shapes` adds spheres and parallelograms, each twice. Every ray that hits meets a tie (which
+/// copy a structure returns may differ from brute's: docs/accel.md, "Correctness").
+TestScene coincident_surfaces(uint64_t seed, bool shapes);
 /// Ordinary triangles mixed with zero-area, NaN-vertex and infinite-vertex triangles.
 TestScene degenerate_triangles(uint64_t seed);
 /// True for a primitive a structure must reference: its box is not empty and never_hit
