@@ -146,14 +146,15 @@ TestScene coincident_surfaces(uint64_t seed, bool shapes) {
   TestScene s{shapes ? "coincident_shapes" : "coincident_triangles", {}};
   Pcg32 rng(seed, 9);
   struct Item {
-    int kind;  // 0 triangle, 1 sphere, 2 parallelogram
+    int kind;  // 0 triangle (a, b, c), 1 sphere (centre a), 2 parallelogram (corner a, edges b, c)
     Vec3 a, b, c;
+    float radius;  // spheres
   };
   std::vector<Item> items;
   const auto triangle = [&](Vec3 a, Vec3 b, Vec3 c) {
-    items.push_back({0, a, b, c});
-    items.push_back({0, a, b, c});
-    if (rng.next_bounded(2)) items.push_back({0, b, c, a});
+    items.push_back({0, a, b, c, 0.0f});
+    items.push_back({0, a, b, c, 0.0f});
+    if (rng.next_bounded(2)) items.push_back({0, b, c, a, 0.0f});
   };
   const TestScene room = room_with_boxes(20, seed);
   for (uint32_t id = 0; id < room.prims.size(); ++id) {
@@ -166,8 +167,9 @@ TestScene coincident_surfaces(uint64_t seed, bool shapes) {
   }
   if (shapes) {
     for (int i = 0; i < 100; ++i) {
-      const Item sphere{1, random_vec(rng) * 10.0f, Vec3(0.1f + rng.next_float()), {}};
-      const Item quad{2, random_vec(rng) * 10.0f, random_dir(rng), random_dir(rng)};
+      const Vec3 centre = random_vec(rng) * 10.0f;
+      const Item sphere{1, centre, {}, {}, 0.1f + rng.next_float()};
+      const Item quad{2, random_vec(rng) * 10.0f, random_dir(rng), random_dir(rng), 0.0f};
       for (int k = 0; k < 2; ++k) items.push_back(sphere), items.push_back(quad);
     }
   }
@@ -177,7 +179,7 @@ TestScene coincident_surfaces(uint64_t seed, bool shapes) {
     if (it.kind == 0)
       add_triangle(s.prims, it.a, it.b, it.c);
     else if (it.kind == 1)
-      s.prims.add_sphere({it.a, it.b.x}, 1);
+      s.prims.add_sphere({it.a, it.radius}, 1);
     else
       s.prims.add_quad({it.a, it.b, it.c}, 2);
   }
