@@ -232,6 +232,48 @@ TEST(InstanceBvh, StatsCountTheTopLevelOnly) {
   EXPECT_LT(s.bytes, scene().instances.size() * 512);
 }
 
+TEST(InstanceBvh, CoincidentInstancesGoToTheLowestInstance) {
+  // Six placements of one object, apart from each other: instances 1, 2 and 4 at the same
+  // transform and 3 and 5 at another. A ray that hits them meets two or three instances at the
+  // same t and must get the lowest (hit.h, tie_bound), through every bottom-level structure.
+  const Transform a = translate({0, 0, 0}), b = translate({10, 0, 0}) * rotate(30, {0, 0, 1});
+  const Transform c = translate({0, 10, 0}) * scale({1, 2, 1});
+  const std::vector<Instance> instances = {{0, c}, {0, b}, {0, b}, {0, a}, {0, b}, {0, a}};
+  Pcg32 rng(21, 4);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 4000; ++i) {
+    const Vec3 o{rng.next_float() * 30 - 10, rng.next_float() * 30 - 10, rng.next_float() * 8 + 4};
+    const Vec3 centre = i % 2 ? Vec3(10, 0, 0) : Vec3(0, 0, 0);
+    const Vec3 target = centre + Vec3(rng.next_float() * 3 - 1.5f, rng.next_float() * 3 - 1.5f,
+                                      rng.next_float() * 2 - 1);
+    rays.push_back({o, target - o});
+  }
+  size_t lowest = 0;
+  for (const std::string& name : std::vector<std::string>{"brute", "bvh", "kdtree", "grid"}) {
+    std::unique_ptr<Accelerator> bottom = make_accelerator(name);
+    bottom->build(scene().objects[0]);
+    InstanceBvh top;
+    top.build({{bottom.get(), &scene().objects[0]}}, instances);
+    for (size_t i = 0; i < rays.size(); ++i) {
+      Hit h;
+      if (!top.intersect(rays[i], h)) continue;
+      // Test every instance alone: the least (t, instance) is the answer.
+      uint32_t want = kNoInstance;
+      float want_t = kInfinity;
+      for (uint32_t k = 0; k < instances.size(); ++k) {
+        InstanceBvh one;
+        one.build({{bottom.get(), &scene().objects[0]}}, {instances[k]});
+        Hit hk;
+        if (one.intersect(rays[i], hk) && hk.t < want_t) want = k, want_t = hk.t;
+      }
+      ASSERT_EQ(h.instance, want) << name << " ray " << i;
+      EXPECT_EQ(h.t, want_t) << name << " ray " << i;
+      lowest += name == "bvh" && (want == 1 || want == 3);
+    }
+  }
+  EXPECT_GT(lowest, 1000u);  // the rays do meet the coincident instances
+}
+
 TEST(InstanceBvh, EmptyAndUntraceable) {
   InstanceBvh empty;
   empty.build({}, {});

@@ -31,8 +31,7 @@ TestScene mixed_shapes(uint64_t seed);
 /// Coincident surfaces: a room with boxes and a soup of triangles, each triangle two or three
 /// times (exact copies, and copies with their vertices rotated, whose t differs by rounding),
 /// added in a shuffled order so that a copy's id is as often below as above the original's.
-/// `shapes` adds spheres and parallelograms, each twice. Every ray that hits meets a tie (which
-/// copy a structure returns may differ from brute's: docs/accel.md, "Correctness").
+/// `shapes` adds spheres and parallelograms, each twice. Every ray that hits meets a tie.
 TestScene coincident_surfaces(uint64_t seed, bool shapes);
 /// Ordinary triangles mixed with zero-area, NaN-vertex and infinite-vertex triangles.
 TestScene degenerate_triangles(uint64_t seed);

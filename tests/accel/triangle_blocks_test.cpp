@@ -1,5 +1,5 @@
 // The 4-lane block test must return exactly what the scalar watertight test returns when run
-// over the same triangles in order: same primitive, and t, u, v to the bit.
+// over the same triangles: same primitive, and t, u, v to the bit (the least (t, id): hit.h).
 #include <gtest/gtest.h>
 
 #include <array>
@@ -14,14 +14,15 @@
 namespace penumbra {
 namespace {
 
-/// The scalar reference: the triangles in order, each hit shrinking the interval.
+/// The scalar reference: the triangles in order, each hit shrinking the interval (to the same
+/// t for a lower id: hit.h, tie_bound).
 bool scalar_closest(const PrimitiveSet& prims, std::span<const uint32_t> ids, const PreparedRay& pr,
                     Hit& hit) {
   bool found = false;
   for (uint32_t id : ids) {
     const Vec3* v = prims.triangle(id);
     float t, u, w;
-    if (intersect_triangle(pr, v[0], v[1], v[2], pr.ray.tmin, hit.t, t, u, w)) {
+    if (intersect_triangle(pr, v[0], v[1], v[2], pr.ray.tmin, tie_bound(hit, id), t, u, w)) {
       hit = {t, u, w, id};
       found = true;
     }
@@ -93,6 +94,49 @@ TEST(TriangleBlocks, MatchTheScalarTestBitForBit) {
   // The rays aim at the shared edge, so most must hit something (and many in second blocks).
   EXPECT_GT(hits, 10000u);
   EXPECT_GT(any_hits, 4000u);
+}
+
+TEST(TriangleBlocks, CopiesOfATriangleGiveTheLowestIdInEveryLane) {
+  // A leaf of 1..12 copies of one triangle, their ids in decreasing order (so lane order and
+  // block order both meet the highest id first): every ray through it gets the lowest id, at
+  // the one t all copies share, as a hit in the same place before the test would decide.
+  Pcg32 rng(12, 7);
+  for (int it = 0; it < 2000; ++it) {
+    const uint32_t n = 1 + rng.next_bounded(12);
+    const auto rv = [&] { return Vec3(rng.next_float(), rng.next_float(), rng.next_float()); };
+    const Vec3 a = rv(), b = rv(), c = rv();
+    TriangleMesh mesh;
+    for (uint32_t i = 0; i < n; ++i) {
+      for (const Vec3& p : {a, b, c}) mesh.positions.push_back(p);
+      for (uint32_t k = 0; k < 3; ++k) mesh.indices.push_back(3 * i + k);
+    }
+    PrimitiveSet prims;
+    prims.add_mesh(mesh, Transform(), 0);
+    std::vector<uint32_t> ids(n);
+    std::vector<PrimRef> refs(n);
+    for (uint32_t i = 0; i < n; ++i) ids[i] = n - 1 - i, refs[i].id = ids[i];
+    TriangleBlocks blocks;
+    blocks.resize(TriangleBlocks::blocks_for(n));
+    blocks.fill(0, prims, refs);
+    Ray ray{rv() * 3.0f - Vec3(1.0f), {}};
+    ray.d = (a + b + c) * (1.0f / 3.0f) - ray.o;
+    const PreparedRay pr(ray);
+    const Hit h = expect_as_scalar(blocks, 0, prims, ids, pr, kInfinity, it);
+    ASSERT_TRUE(h.valid()) << "iteration " << it;
+    EXPECT_EQ(h.prim, 0u) << "iteration " << it;
+    // With a hit of a lower id already at that t, the leaf leaves it be; with a higher id, the
+    // leaf's lowest replaces it.
+    Hit lower = h, higher = h;
+    lower.prim = 0, higher.prim = n;
+    if (n > 1) {
+      Hit got = lower;
+      EXPECT_FALSE(blocks.intersect<false>(BlockRay(pr), 0, n, got)) << "iteration " << it;
+      EXPECT_EQ(got.prim, 0u);
+    }
+    Hit got = higher;
+    EXPECT_TRUE(blocks.intersect<false>(BlockRay(pr), 0, n, got)) << "iteration " << it;
+    EXPECT_EQ(got.prim, 0u) << "iteration " << it;
+  }
 }
 
 TEST(TriangleBlocks, MatchTheScalarTestForRaysLeavingASurface) {

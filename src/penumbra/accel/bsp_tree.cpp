@@ -107,16 +107,16 @@ bool BspTree::test_refs(const BspNode& node, const PreparedRay& pr, float lo, fl
   bool found = false;
   for (uint32_t i = node.first; i < node.first + node.count; ++i) {
     cost.prims(1);
-    const float tmax = std::min(hit.t, upper);
     bool h;
     if constexpr (kTriangles) {
       const Vec3* v = &tris_[3 * size_t(i)];
+      const float tmax = std::min(tie_bound(hit, tree_.refs[i]), upper);
       float t, u, w;
       h = intersect_triangle(pr, v[0], v[1], v[2], pr.ray.tmin, tmax, t, u, w) && t >= lo;
       if (h) hit = {t, u, w, tree_.refs[i]};
     } else {
-      Hit c;
-      c.t = tmax;
+      Hit c = hit;  // its t and id decide a tie (tie_bound), unless the cell ends first
+      if (upper < c.t) c = Hit{upper};
       h = prims_->intersect(tree_.refs[i], pr, c) && c.t >= lo;
       if (h) hit = c;
     }

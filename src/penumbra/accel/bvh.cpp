@@ -19,6 +19,7 @@ void Bvh::build(const PrimitiveSet& prims) {
   BinaryBvh tree = build_binary_bvh(make_prim_refs(prims), params_);
   const size_t node_count = tree.node_count();
   nodes_ = std::move(tree.nodes);
+  grow_boxes(nodes_);  // for culling at cull_bound(hit.t) (hit.h)
   leaf_.build(prims, tree.refs);
   stats_ = {};
   stats_.nodes = node_count;

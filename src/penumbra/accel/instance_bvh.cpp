@@ -57,6 +57,7 @@ void InstanceBvh::build(std::vector<InstancedObject> objects, std::vector<Instan
   params.traversal_cost = 0.25f;
   BinaryBvh tree = build_binary_bvh(std::move(refs), params);
   nodes_ = std::move(tree.nodes);
+  grow_boxes(nodes_);  // for culling at cull_bound(hit.t) (hit.h)
   leaf_ids_.clear();
   for (const PrimRef& r : tree.refs) leaf_ids_.push_back(r.id);
   stats_ = {};
@@ -82,7 +83,10 @@ bool InstanceBvh::traverse(const Ray& ray, Hit& hit, Cost cost) const {
       const uint32_t id = leaf_ids_[k];
       const Instance& inst = instances_[id];
       const Accelerator& bottom = *objects_[inst.object].accel;
-      const Ray local = to_object(ray, inst.to_world, hit.t);
+      // At the t of the closest hit so far, the lower instance wins (hit.h, tie_bound): such an
+      // instance's own query may return that very t.
+      const bool lower = hit.valid() && id < hit.instance;
+      const Ray local = to_object(ray, inst.to_world, lower ? next_float_up(hit.t) : hit.t);
       if constexpr (kAnyHit) {
         if constexpr (Cost::kCounts) {
           if (bottom.occluded_cost(local, *cost.cost)) return true;
@@ -96,7 +100,7 @@ bool InstanceBvh::traverse(const Ray& ray, Hit& hit, Cost cost) const {
           any = bottom.intersect_cost(local, h, *cost.cost);
         else
           any = bottom.intersect(local, h);
-        if (any && h.t < hit.t) {
+        if (any && (h.t < hit.t || (h.t == hit.t && lower))) {
           hit = h;
           hit.instance = id;
           found = true;

@@ -92,6 +92,7 @@ void KdTree::build(const PrimitiveSet& prims) {
   prims_ = &prims;
   nodes_ = {}, refs_ = {}, blocks_ = {};  // releasing the memory of a previous build
   bounds_ = {};
+  max_extent_ = 0;
   stats_ = {};
   // One reference per primitive with finite bounds that a ray can hit (never_hit); zeros as +0
   // so that boxes compare alike.
@@ -102,6 +103,7 @@ void KdTree::build(const PrimitiveSet& prims) {
     if (b.empty() || never_hit(prims, id)) continue;
     b.lo = b.lo + Vec3(0.0f), b.hi = b.hi + Vec3(0.0f);
     bounds_.extend(b);
+    max_extent_ = std::max(max_extent_, max_component(b.hi - b.lo));
     refs.push_back({b, id});
   }
   const size_t n = refs.size();
@@ -195,6 +197,9 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   // Per-ray values in arrays: Vec3's operator[] is a chain of selects, too slow per node.
   const float o[3] = {pr.ray.o.x, pr.ray.o.y, pr.ray.o.z};
   const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
+  // Cells are dropped beyond cull_bound(hit.t, cull), not hit.t (hit.h): a triangle's t may lie
+  // below the entry of a cell that holds it by a share of its size.
+  const float cull = cull_slack(max_extent_, inv);
   const uint32_t neg_mask[3] = {0u - uint32_t(pr.neg[0]), 0u - uint32_t(pr.neg[1]),
                                 0u - uint32_t(pr.neg[2])};
   // The ray's interval inside the root cell (slab test; a NaN from a ray lying in a face plane
@@ -303,7 +308,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         if (first_empty) {
           if (second_empty) goto pop;
           tmin = max_keep(tp - slack, tmin);
-          if (tmin > hit.t) goto pop;  // as the deferred entry would have been dropped
+          if (tmin > cull_bound(hit.t, cull)) goto pop;  // as a deferred cell would be dropped
           index = second;
         } else {
           if constexpr (kAnyHit) {
@@ -337,7 +342,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   leaf:
     cost.node();
     if constexpr (kTriangles) {
-      // Blocks of four, tested four at a time (bit for bit the scalar test in reference order).
+      // Blocks of four, tested four at a time (bit for bit the scalar test, by (t, id)).
       // All the leaf's blocks start loading before the first is tested (a Zen 4: occlusion and
       // shadow rays +3-7 %, closest hits -5 to +9 %; docs/accel.md, "2026-12-06, nineteenth
       // session").
@@ -355,14 +360,15 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         }
       }
     }
-    // The next deferred cell that may still hold a closer hit. This is the early exit: a hit at
-    // t <= this leaf's tmax skips every deferred cell, as they start at or after tmax, except
-    // the cells beside a plane the ray lies in, which share this leaf's interval.
+    // The next deferred cell that may still hold a closer hit (or one at the same t with a lower
+    // id: hit.h), one starting at or before cull_bound(hit.t). This is the early exit: a hit well inside
+    // this leaf's interval skips every deferred cell, as they start near or after its tmax,
+    // except the cells beside a plane the ray lies in, which share this leaf's interval.
   pop:
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].tmin > hit.t);
+    } while (stack[sp].tmin > cull_bound(hit.t, cull));
     index = stack[sp].node, tmin = stack[sp].tmin, tmax = stack[sp].tmax;
   }
 }

@@ -70,6 +70,7 @@ class KdTree final : public Accelerator {
   KdBuildParams params_;
   const PrimitiveSet* prims_ = nullptr;
   Bounds3 bounds_;
+  float max_extent_ = 0;  ///< the largest extent of a referenced primitive's box (cull_slack)
   std::vector<KdNode, ArrayAllocator<KdNode>> nodes_;
   std::vector<uint32_t, ArrayAllocator<uint32_t>> refs_;
   TriangleBlocks blocks_;  ///< refs_ / 4 blocks when every primitive is a triangle, or none

@@ -43,7 +43,7 @@ class LeafPrims {
       if constexpr (kTriangles) {
         const Vec3* v = &tris_[3 * size_t(i)];
         float t, u, w;
-        h = intersect_triangle(pr, v[0], v[1], v[2], pr.ray.tmin, hit.t, t, u, w);
+        h = intersect_triangle(pr, v[0], v[1], v[2], pr.ray.tmin, tie_bound(hit, ids_[i]), t, u, w);
         if (h) hit = {t, u, w, ids_[i]};
       } else {
         h = prims.intersect(ids_[i], pr, hit);

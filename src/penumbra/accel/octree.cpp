@@ -240,6 +240,7 @@ void Octree::build(const PrimitiveSet& prims) {
   nodes_.clear(), ids_.clear(), tris_.clear();
   stats_ = {};
   PrimRefs refs = make_prim_refs(prims);
+  max_extent_ = max_prim_extent(refs);
   if (refs.refs.empty()) {
     stats_.build_ms = timer.elapsed_ms();
     return;
@@ -360,6 +361,10 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   Entry stack[kStackSize];
   int sp = 0;
   const OctreeRay r(pr);
+  // Nodes are passed over beyond cull_bound(hit.t, cull), not hit.t (hit.h): a triangle's t may
+  // lie below the entry of a node that holds it by a share of its size.
+  const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
+  const float cull = cull_slack(max_extent_, inv);
   Entry cur{make_corner(root_lo_), 0, 0, t0, t1};
   RayMailbox<kMailbox> mailbox;
   bool found = false;
@@ -379,23 +384,24 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         cur = {child_corner(cur.lo, h, oct), node.index + oct, cur.depth + 1, cur.t0, exit};
         continue;
       }
-      if (exit < cur.t1 && exit <= hit.t) {  // an empty octant: on to the next one
+      if (exit < cur.t1 && exit <= cull_bound(hit.t, cull)) {  // an empty octant: the next one
         cur.t0 = exit;
         continue;
       }
     } else {
-      // 3. Leaf: test its primitives. A hit at or before the leaf's exit is the closest (all
-      // later nodes start beyond it); a hit beyond is kept (hit.t shrinks) and the walk goes on.
+      // 3. Leaf: test its primitives. A hit before the leaf's exit, by its cull bound, is the
+      // closest (all later nodes start beyond it; one near the exit may tie with a lower id
+      // there, or round lower: hit.h); a hit beyond is kept (hit.t shrinks) and the walk goes on.
       if (test_mailboxed<kAnyHit, kTriangles>(*prims_, ids_.data(), tris_.data(), node.index,
                                               node.index + node.count(), pr, hit, mailbox,
                                               cost)) {
         if constexpr (kAnyHit) return true;
         found = true;
       }
-      if (hit.t <= cur.t1) return found;
+      if (cull_bound(hit.t, cull) < cur.t1) return found;
     }
     // 4. The next node front to back; none left, or it starts beyond the closest hit: done.
-    if (sp == 0 || stack[sp - 1].t0 > hit.t) return found;
+    if (sp == 0 || stack[sp - 1].t0 > cull_bound(hit.t, cull)) return found;
     cur = stack[--sp];
   }
 }

@@ -104,6 +104,7 @@ class Octree final : public Accelerator {
   std::vector<uint32_t, ArrayAllocator<uint32_t>> ids_;
   /// Triangle-only sets: three vertices per leaf slot, or empty.
   std::vector<Vec3, ArrayAllocator<Vec3>> tris_;
+  float max_extent_ = 0;  ///< the largest extent of a primitive box (cull_slack, hit.h)
   AccelStats stats_;
 };
 

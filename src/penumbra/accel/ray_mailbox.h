@@ -69,7 +69,7 @@ inline bool test_mailboxed(const PrimitiveSet& prims, const uint32_t* ids, const
     if constexpr (kTriangles) {
       const Vec3* v = tris + 3 * size_t(i);
       float t, u, w;
-      h = intersect_triangle(pr, v[0], v[1], v[2], pr.ray.tmin, hit.t, t, u, w);
+      h = intersect_triangle(pr, v[0], v[1], v[2], pr.ray.tmin, tie_bound(hit, id), t, u, w);
       if (h) hit = {t, u, w, id};
     } else {
       h = prims.intersect(id, pr, hit);

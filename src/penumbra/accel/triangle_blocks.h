@@ -193,7 +193,8 @@ class TriangleBlocks {
   static constexpr uint32_t kPrefetchTriangles = 16;
 
   /// Tests the leaf of `count` triangles starting at block `first` on (tmin, hit.t); updates
-  /// `hit` exactly as testing them one by one in order with the scalar test would.
+  /// `hit` exactly as testing them one by one with the scalar test would (in any order: the
+  /// closest hit is the least (t, id), hit.h).
   /// kAnyHit: returns true as soon as one block has a hit, leaving `hit` unspecified. `cost`
   /// counts the triangles of the blocks tested (all `count` unless an any-hit test stops early).
   template <bool kAnyHit, class Cost = NoCost>
@@ -247,7 +248,7 @@ inline F ray_lanes(F8 x) {
 }
 
 /// Tests the lanes of F (one block, or a pair, whose words start at `blk`) against `r` on
-/// (tmin, hit.t) and accepts their hits in lane order, as the scalar loop would; returns whether
+/// (tmin, hit.t) and accepts their hits by (t, id), as the scalar loop would; returns whether
 /// one was found (kAnyHit: as soon as one is, leaving `hit` unspecified).
 template <bool kAnyHit, class F>
 [[gnu::always_inline]] inline bool test_lanes(const BlockRay& r, const float* blk, Hit& hit) {
@@ -281,8 +282,12 @@ template <bool kAnyHit, class F>
   const F az = sz * Az, bz = sz * Bz, cz = sz * Cz;
   const F T = ((U * az) + (V * bz)) + (W * cz);
   const F sT = (F)((I)T ^ ((I)det & (I{} + INT32_MIN)));
-  const F tmax = splat<F>(hit.t);
-  ok &= ~(sT <= tmin * adet) & ~(sT >= tmax * adet);
+  // Up to the hit so far, inclusive when there is one (a positive t: one ulp up is the next
+  // bit pattern): a lane at its very t may have a lower id (hit.h, tie_bound), which the loop
+  // below decides. The range check before the division as triangle.h's, by its widened limit.
+  const float bound = std::bit_cast<float>(std::bit_cast<uint32_t>(hit.t) + uint32_t(hit.valid()));
+  const F limit = splat<F>(bound * kRangeWiden) * adet;
+  ok &= ~(sT <= tmin * adet) & ~((sT > limit) & (limit > splat<F>(kRangeTiny)));
   if (!mask_bits(ok)) return false;
   const F inv = 1.0f / det;
   const F t = T * inv;
@@ -292,22 +297,20 @@ template <bool kAnyHit, class F>
   const F max_yt = max_abs3(ay, by, cy);
   const F max_e = max_abs3(U, V, W);
   const F delta_t = triangle_t_error(max_e, max_xt, max_yt, max_zt) * vabs(inv);
-  ok &= (t > delta_t) & (t > tmin) & (t < tmax);
+  ok &= (t > delta_t) & (t > tmin) & (t < splat<F>(bound));
   unsigned hits = mask_bits(ok);
   if (!hits) return false;
   if constexpr (kAnyHit) return true;
-  // Accept the candidates in lane order as the scalar loop would: each hit shrinks the
-  // interval, and a later lane must pass the two tests that depend on it again (with their
-  // own rounding, so that a t equal to the current one in all but the last bit is decided the
-  // same way).
+  // Accept the candidates by (t, id), as the scalar loop would: each hit shrinks the interval.
   bool accepted = false;
   for (; hits; hits &= hits - 1) {
     const int i = std::countr_zero(hits);
-    if (accepted && (sT[i] >= hit.t * adet[i] || !(t[i] < hit.t))) continue;
+    const uint32_t id = lane_id<F>(blk, i);
+    if (!(t[i] < hit.t || (t[i] == hit.t && id < hit.prim))) continue;
     hit.t = t[i];
     hit.u = V[i] * inv[i];
     hit.v = W[i] * inv[i];
-    hit.prim = lane_id<F>(blk, i);
+    hit.prim = id;
     accepted = true;
   }
   return accepted;

@@ -242,6 +242,7 @@ void UniformGrid::build(const PrimitiveSet& prims) {
   res_ = {0, 0, 0};
   stats_ = {};
   const PrimRefs refs = make_prim_refs(prims);
+  max_extent_ = max_prim_extent(refs);
   if (refs.refs.empty()) {
     stats_.build_ms = timer.elapsed_ms();
     return;
@@ -308,8 +309,12 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   }
   // 3. Walk the cells in order. A hit found in a cell may lie beyond it (the primitive reaches
   // into later cells): it is kept as the closest so far (hit.t shrinks) and the walk goes on
-  // until the hit lies within the current cell, t <= the cell's exit. Keeping it, rather than
-  // rejecting it and meeting the primitive again later, is what makes the mailbox safe.
+  // until the hit lies within the current cell, cull_bound(t) < the cell's exit (hit.h: near the
+  // exit, the next cell may hold a primitive at the same t with a lower id, tie_bound, or one
+  // whose t rounds lower). Keeping it, rather than rejecting it and meeting the primitive again
+  // later, is what makes the mailbox safe.
+  const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
+  const float cull = cull_slack(max_extent_, inv);
   RayMailbox<kMailbox> mailbox;
   bool found = false;
   while (true) {
@@ -324,7 +329,7 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
     const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
     const float t_exit = next[a];
     // The closest hit lies in this cell, or the segment ends (or leaves the grid) in it.
-    if (hit.t <= t_exit || t1 <= t_exit) return found;
+    if (cull_bound(hit.t, cull) < t_exit || t1 <= t_exit) return found;
     cell[a] += step[a];
     if (cell[a] == last[a]) return found;
     idx += step[a] * stride[a];

@@ -107,6 +107,7 @@ class UniformGrid final : public Accelerator {
   /// Triangle-only sets: three vertices per reference, in cell order, or empty.
   std::vector<Vec3, ArrayAllocator<Vec3>> tris_;
   std::vector<uint64_t> occupied_;  ///< bit c set when cell c holds any primitive
+  float max_extent_ = 0;  ///< the largest extent of a primitive box (cull_slack, hit.h)
   AccelStats stats_;
 };
 

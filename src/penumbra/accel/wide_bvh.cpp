@@ -417,7 +417,7 @@ template <bool kAnyHit, bool kTriangles>
   };
   if (w.count == 0) {
     const Node& n = nodes[w.child];
-    const F t1 = F::broadcast(hit.t);
+    const F t1 = F::broadcast(cull_bound(hit.t));  // hit.h
     const F near = max((plane(n, b.nx) - b.ox) * b.ix,
                        max((plane(n, b.ny) - b.oy) * b.iy,
                            max((plane(n, b.nz) - b.oz) * b.iz, b.t0)));
@@ -477,7 +477,7 @@ template <bool kAnyHit, bool kTriangles>
   do {
     if (w.sp == 0) return true;
     --w.sp;
-  } while (w.stack[w.sp].t > hit.t);
+  } while (w.stack[w.sp].t > cull_bound(hit.t));
   w.child = w.stack[w.sp].child, w.count = w.stack[w.sp].count;
   if (w.count == 0) prefetch_line(nodes[w.child].child);
   return false;
@@ -537,7 +537,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       // depends on the box test, so fetch the line now rather than after it (two misses in
       // parallel instead of one after the other).
       prefetch_line(n.child);
-      const F t1 = F::broadcast(hit.t);
+      const F t1 = F::broadcast(cull_bound(hit.t));  // hit.h
       const F near = max((plane(n, nx) - ox) * ix,
                          max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
       const F far = min((plane(n, nx ^ 1) - ox) * fx,
@@ -648,7 +648,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].t > hit.t);
+    } while (stack[sp].t > cull_bound(hit.t));
     child = stack[sp].child, count = stack[sp].count;
   }
 }

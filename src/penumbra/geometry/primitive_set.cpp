@@ -119,25 +119,26 @@ QuadData PrimitiveSet::quad_at(uint32_t id, float time) const {
   // interpolation is that of triangle_at, sphere_at and quad_at.
   const float s = motion_time(pr.ray.time);
   float t, u = 0, v = 0;
+  const float tmax = tie_bound(hit, id);
   switch (kind(id)) {
     case PrimKind::kTriangle: {
       const Vec3* a = triangle(id);
       if (!intersect_triangle(pr, motion_lerp(s, a[0], a[3]), motion_lerp(s, a[1], a[4]),
-                              motion_lerp(s, a[2], a[5]), pr.ray.tmin, hit.t, t, u, v))
+                              motion_lerp(s, a[2], a[5]), pr.ray.tmin, tmax, t, u, v))
         return false;
       break;
     }
     case PrimKind::kSphere: {
       const SphereData* a = &sphere(id);
       if (!intersect_sphere(pr.ray, motion_lerp(s, a[0].center, a[1].center),
-                            motion_lerp(s, a[0].radius, a[1].radius), pr.ray.tmin, hit.t, t))
+                            motion_lerp(s, a[0].radius, a[1].radius), pr.ray.tmin, tmax, t))
         return false;
       break;
     }
     case PrimKind::kQuad: {
       const QuadData* a = &quad(id);
       if (!intersect_quad(pr.ray, motion_lerp(s, a[0].p, a[1].p), motion_lerp(s, a[0].e1, a[1].e1),
-                          motion_lerp(s, a[0].e2, a[1].e2), pr.ray.tmin, hit.t, t, u, v))
+                          motion_lerp(s, a[0].e2, a[1].e2), pr.ray.tmin, tmax, t, u, v))
         return false;
       break;
     }

@@ -137,23 +137,24 @@ class PrimitiveSet {
   const Bounds3& bounds() const { return bounds_; }
 
   /// Tests primitive `id` on (ray.tmin, hit.t) at the ray's time; on a closer hit updates `hit`
-  /// and returns true.
+  /// and returns true. At the very t of `hit`, the lower primitive id is the closer (tie_bound).
   bool intersect(uint32_t id, const PreparedRay& pr, Hit& hit) const {
     float t, u = 0, v = 0;
+    const float tmax = tie_bound(hit, id);
     switch (PrimKind(codes_[id])) {  // a moving primitive's code matches no case
       case PrimKind::kTriangle: {
         const Vec3* p = triangle(id);
-        if (!intersect_triangle(pr, p[0], p[1], p[2], pr.ray.tmin, hit.t, t, u, v)) return false;
+        if (!intersect_triangle(pr, p[0], p[1], p[2], pr.ray.tmin, tmax, t, u, v)) return false;
         break;
       }
       case PrimKind::kSphere: {
         const SphereData& s = sphere(id);
-        if (!intersect_sphere(pr.ray, s.center, s.radius, pr.ray.tmin, hit.t, t)) return false;
+        if (!intersect_sphere(pr.ray, s.center, s.radius, pr.ray.tmin, tmax, t)) return false;
         break;
       }
       case PrimKind::kQuad: {
         const QuadData& q = quad(id);
-        if (!intersect_quad(pr.ray, q.p, q.e1, q.e2, pr.ray.tmin, hit.t, t, u, v)) return false;
+        if (!intersect_quad(pr.ray, q.p, q.e1, q.e2, pr.ray.tmin, tmax, t, u, v)) return false;
         break;
       }
       default:  // out of line: static scenes keep the small inlined switch

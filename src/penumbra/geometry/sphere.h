@@ -28,15 +28,13 @@ inline bool intersect_sphere(const Ray& r, Vec3 center, float radius, float tmin
   const double q = b + std::copysign(sq, b);
   double t0 = q != 0.0 ? c / q : 0.0, t1 = q / a;
   if (t0 > t1) std::swap(t0, t1);
-  if (t0 > tmin && t0 < tmax) {
-    t = static_cast<float>(t0);
-    return t > tmin && t < tmax;
-  }
-  if (t1 > tmin && t1 < tmax) {
-    t = static_cast<float>(t1);
-    return t > tmin && t < tmax;
-  }
-  return false;
+  // The nearer root beyond tmin, then tmax on its float value: which root is taken must not
+  // depend on tmax, so that the same t is found whatever the closest hit so far (hit.h,
+  // tie_bound). With t0 >= tmax the far root lies beyond tmax too, as before.
+  const double root = t0 > tmin ? t0 : t1;
+  if (!(root > tmin)) return false;
+  t = static_cast<float>(root);
+  return t > tmin && t < tmax;
 }
 
 }  // namespace penumbra

@@ -28,6 +28,15 @@ inline T triangle_t_error(T max_e, T max_x, T max_y, T max_z) {
   return ((kE * max_e + kXY * (max_x * max_y)) + (kZ * max_z) * (max_x + max_y)) * max_z;
 }
 
+/// The range check before the division compares the scaled distance with tmax widened by this
+/// factor, so that it never rejects a t below tmax: t = fl(T fl(1 / det)) and the limit
+/// fl(fl(tmax k) |det|) round four times by at most 2^-24 each, less than the widening. Whether
+/// a hit replaces the closest so far then depends on t alone (the same t decides the same way
+/// in any order of tests: hit.h, tie_bound). A limit below kRangeTiny (where the product may be
+/// subnormal, its relative error unbounded) skips the check.
+inline constexpr float kRangeWiden = 1.0f + 0x1p-21f;
+inline constexpr float kRangeTiny = 0x1p-100f;
+
 /// Tests triangle (a, b, c) against `pr` on (tmin, tmax). On a hit sets t and the barycentrics
 /// (u, v) of b and c and returns true.
 inline bool intersect_triangle(const PreparedRay& pr, Vec3 a, Vec3 b, Vec3 c, float tmin,
@@ -57,9 +66,11 @@ inline bool intersect_triangle(const PreparedRay& pr, Vec3 a, Vec3 b, Vec3 c, fl
   const float az = pr.sz * A[pr.kz], bz = pr.sz * B[pr.kz], cz = pr.sz * C[pr.kz];
   const float T = U * az + V * bz + W * cz;
   // Range test on the scaled distance, without dividing yet; with the sign of det moved onto T
-  // (exact), one comparison pair serves both orientations.
+  // (exact), one comparison pair serves both orientations. tmax only by its widened limit
+  // (kRangeWiden): t itself decides below.
   const float adet = std::fabs(det), sT = std::signbit(det) ? -T : T;
-  if (sT <= tmin * adet || sT >= tmax * adet) return false;
+  const float limit = (tmax * kRangeWiden) * adet;
+  if (sT <= tmin * adet || (sT > limit && limit > kRangeTiny)) return false;
   const float inv = 1.0f / det;
   t = T * inv;
   // Reject a hit closer to the origin than the rounding error of t: a ray leaving a surface (its

@@ -1,11 +1,15 @@
 #pragma once
 /// The flat binary BVH node (32 bytes, two to a cache line) and the aligned array that holds them.
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "penumbra/core/array_allocator.h"
 #include "penumbra/core/bounds.h"
+#include "penumbra/geometry/hit.h"
 
 namespace penumbra {
 
@@ -31,8 +35,42 @@ struct alignas(32) BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
+/// Grows a box (rows as BvhNode::box) on every side by kCullSlack (geometry/hit.h) of its largest
+/// extent, rounded outward, for the boxes a traversal tests: with culling at cull_bound(hit.t),
+/// the grown box never starts beyond a primitive's computed t within it, so that the lower id of
+/// two primitives at the same t is always found (hit.h). Empty boxes (lo > hi, or NaN) stay as
+/// they are, and no plane goes beyond the largest finite float.
+inline void grow_box(float* box) {
+  for (int a = 0; a < 3; ++a)
+    if (!(box[2 * a] <= box[2 * a + 1])) return;
+  double extent = 0;
+  for (int a = 0; a < 3; ++a) extent = std::max(extent, double(box[2 * a + 1]) - double(box[2 * a]));
+  const double slack = extent * double(kCullSlack);
+  constexpr float kMax = std::numeric_limits<float>::max();
+  for (int a = 0; a < 3; ++a) {
+    const double lo = double(box[2 * a]) - slack, hi = double(box[2 * a + 1]) + slack;
+    float l = static_cast<float>(std::max(lo, double(-kMax)));
+    float h = static_cast<float>(std::min(hi, double(kMax)));
+    if (double(l) > lo) l = std::nextafter(l, -kMax);
+    if (double(h) < hi) h = std::nextafter(h, kMax);
+    box[2 * a] = l, box[2 * a + 1] = h;
+  }
+}
+
 /// Node array: starts on a cache line, huge pages when large; sizing it writes nothing (the
 /// builders write every node that is read).
 using BvhNodeArray = std::vector<BvhNode, NoInitArrayAllocator<BvhNode>>;
+
+/// grow_box on every node reachable from the root (nodes[0]) of a binary tree.
+inline void grow_boxes(BvhNodeArray& nodes) {
+  if (nodes.empty()) return;
+  std::vector<uint32_t> todo{0};
+  while (!todo.empty()) {
+    BvhNode& n = nodes[todo.back()];
+    todo.pop_back();
+    grow_box(n.box);
+    if (!n.is_leaf()) todo.push_back(n.index), todo.push_back(n.index + 1);
+  }
+}
 
 }  // namespace penumbra

@@ -1,6 +1,7 @@
 #pragma once
 /// What a builder sees of a primitive: its box and its id (Embree's PrimRef; builders know
 /// nothing of meshes, only boxes and centroids).
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -51,5 +52,13 @@ bool never_hit(const PrimitiveSet& prims, uint32_t id);
 /// for every thread count). Parallel.
 /// `spare` reserves room for that many more references (spatial splits add them in place).
 PrimRefs make_prim_refs(const PrimitiveSet& prims, size_t spare = 0);
+
+/// The largest extent along an axis of a reference's box: what structures of cells scale their
+/// cull slack by (cull_slack in geometry/hit.h).
+inline float max_prim_extent(const PrimRefs& refs) {
+  float m = 0;
+  for (const PrimRef& r : refs.refs) m = std::max(m, max_component(r.bounds().diagonal()));
+  return m;
+}
 
 }  // namespace penumbra

@@ -79,7 +79,10 @@ class Collapser {
         child = emit(kids[i], depth + 1);
       }
       WideNode<W>& node = out_[me];  // emit() may have reallocated
-      for (int r = 0; r < 6; ++r) node.box[r][slot[i]] = k.box[r];
+      float box[6];
+      std::copy(k.box, k.box + 6, box);
+      grow_box(box);  // for culling at cull_bound(hit.t) (hit.h)
+      for (int r = 0; r < 6; ++r) node.box[r][slot[i]] = box[r];
       node.child[slot[i]] = child;
       node.count[slot[i]] = count;
     }
@@ -89,7 +92,10 @@ class Collapser {
   /// A root node holding a single leaf (when the binary tree is one leaf).
   void emit_leaf_root(const BvhNode& leaf) {
     WideNode<W> node = empty_node();
-    for (int r = 0; r < 6; ++r) node.box[r][0] = leaf.box[r];
+    float box[6];
+    std::copy(leaf.box, leaf.box + 6, box);
+    grow_box(box);
+    for (int r = 0; r < 6; ++r) node.box[r][0] = box[r];
     node.child[0] = leaf.index;
     node.count[0] = leaf.count;
     out_.push_back(node);
