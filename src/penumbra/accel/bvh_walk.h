@@ -21,9 +21,9 @@ inline bool walk_bvh(const BvhNodeArray& nodes, const BvhRay& r, float tmin, Hit
     uint32_t index, count;
     float t;
   };
-  // Boxes are culled at cull_bound(hit.t), not hit.t (hit.h; the builders grew them).
+  // Boxes are culled at query_cull<kAnyHit>(hit.t), not hit.t (hit.h; the builders grew them).
   float entry;
-  if (!hit_node(nodes[0], r, tmin, cull_bound(hit.t), entry)) return false;
+  if (!hit_node(nodes[0], r, tmin, query_cull<kAnyHit>(hit.t), entry)) return false;
   StackEntry stack[kBvhStackSize];
   int sp = 0;
   uint32_t index = nodes[0].index, count = nodes[0].count;
@@ -37,7 +37,7 @@ inline bool walk_bvh(const BvhNodeArray& nodes, const BvhRay& r, float tmin, Hit
       const BvhNode& a = nodes[index];
       const BvhNode& b = nodes[index + 1];
       float ta, tb;
-      const float cull = cull_bound(hit.t);
+      const float cull = query_cull<kAnyHit>(hit.t);
       const bool ha = hit_node(a, r, tmin, cull, ta);
       const bool hb = hit_node(b, r, tmin, cull, tb);
       if (ha && hb) {
@@ -63,7 +63,7 @@ inline bool walk_bvh(const BvhNodeArray& nodes, const BvhRay& r, float tmin, Hit
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].t > cull_bound(hit.t));
+    } while (stack[sp].t > query_cull<kAnyHit>(hit.t));
     index = stack[sp].index, count = stack[sp].count;
   }
 }

@@ -308,7 +308,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         if (first_empty) {
           if (second_empty) goto pop;
           tmin = max_keep(tp - slack, tmin);
-          if (tmin > cull_bound(hit.t, cull)) goto pop;  // as a deferred cell would be dropped
+          if (tmin > query_cull<kAnyHit>(hit.t, cull)) goto pop;  // as a deferred cell would be dropped
           index = second;
         } else {
           if constexpr (kAnyHit) {
@@ -368,7 +368,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].tmin > cull_bound(hit.t, cull));
+    } while (stack[sp].tmin > query_cull<kAnyHit>(hit.t, cull));
     index = stack[sp].node, tmin = stack[sp].tmin, tmax = stack[sp].tmax;
   }
 }

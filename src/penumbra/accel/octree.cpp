@@ -361,7 +361,7 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   Entry stack[kStackSize];
   int sp = 0;
   const OctreeRay r(pr);
-  // Nodes are passed over beyond cull_bound(hit.t, cull), not hit.t (hit.h): a triangle's t may
+  // Nodes are passed over beyond query_cull<kAnyHit>(hit.t, cull), not hit.t (hit.h): a triangle's t may
   // lie below the entry of a node that holds it by a share of its size.
   const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
   const float cull = cull_slack(max_extent_, inv);
@@ -384,7 +384,7 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         cur = {child_corner(cur.lo, h, oct), node.index + oct, cur.depth + 1, cur.t0, exit};
         continue;
       }
-      if (exit < cur.t1 && exit <= cull_bound(hit.t, cull)) {  // an empty octant: the next one
+      if (exit < cur.t1 && exit <= query_cull<kAnyHit>(hit.t, cull)) {  // an empty octant: the next one
         cur.t0 = exit;
         continue;
       }
@@ -398,10 +398,10 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         if constexpr (kAnyHit) return true;
         found = true;
       }
-      if (cull_bound(hit.t, cull) < cur.t1) return found;
+      if (query_cull<kAnyHit>(hit.t, cull) < cur.t1) return found;
     }
     // 4. The next node front to back; none left, or it starts beyond the closest hit: done.
-    if (sp == 0 || stack[sp - 1].t0 > cull_bound(hit.t, cull)) return found;
+    if (sp == 0 || stack[sp - 1].t0 > query_cull<kAnyHit>(hit.t, cull)) return found;
     cur = stack[--sp];
   }
 }

@@ -285,7 +285,10 @@ template <bool kAnyHit, class F>
   // Up to the hit so far, inclusive when there is one (a positive t: one ulp up is the next
   // bit pattern): a lane at its very t may have a lower id (hit.h, tie_bound), which the loop
   // below decides. The range check before the division as triangle.h's, by its widened limit.
-  const float bound = std::bit_cast<float>(std::bit_cast<uint32_t>(hit.t) + uint32_t(hit.valid()));
+  // (Any-hit queries have no hit so far: their bound is the ray's tmax.)
+  const float bound =
+      kAnyHit ? hit.t
+              : std::bit_cast<float>(std::bit_cast<uint32_t>(hit.t) + uint32_t(hit.valid()));
   const F limit = splat<F>(bound * kRangeWiden) * adet;
   ok &= ~(sT <= tmin * adet) & ~((sT > limit) & (limit > splat<F>(kRangeTiny)));
   if (!mask_bits(ok)) return false;

@@ -329,7 +329,7 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
     const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
     const float t_exit = next[a];
     // The closest hit lies in this cell, or the segment ends (or leaves the grid) in it.
-    if (cull_bound(hit.t, cull) < t_exit || t1 <= t_exit) return found;
+    if (query_cull<kAnyHit>(hit.t, cull) < t_exit || t1 <= t_exit) return found;
     cell[a] += step[a];
     if (cell[a] == last[a]) return found;
     idx += step[a] * stride[a];

@@ -103,6 +103,13 @@ int any_hit_first(unsigned mask, unsigned leaves, FloatW<W> near, FloatW<W> far,
   return first;
 }
 
+/// PreparedRay(r) out of line, for the interleaved batches: inlined into their slot setup,
+/// GCC 12 stops with an internal compiler error (extract_insn, pass vregs) on its vectorised
+/// std::signbit when compiling for x86-64-v3 since the culling of 2026-12-07 (hit.h, cull_bound).
+[[gnu::noinline]] PreparedRay prepare_slot_ray(const Ray& r) {
+  return PreparedRay(r);
+}
+
 }  // namespace
 
 template <int W, class Node>
@@ -417,7 +424,7 @@ template <bool kAnyHit, bool kTriangles>
   };
   if (w.count == 0) {
     const Node& n = nodes[w.child];
-    const F t1 = F::broadcast(cull_bound(hit.t));  // hit.h
+    const F t1 = F::broadcast(query_cull<kAnyHit>(hit.t));  // hit.h
     const F near = max((plane(n, b.nx) - b.ox) * b.ix,
                        max((plane(n, b.ny) - b.oy) * b.iy,
                            max((plane(n, b.nz) - b.oz) * b.iz, b.t0)));
@@ -477,7 +484,7 @@ template <bool kAnyHit, bool kTriangles>
   do {
     if (w.sp == 0) return true;
     --w.sp;
-  } while (w.stack[w.sp].t > cull_bound(hit.t));
+  } while (w.stack[w.sp].t > query_cull<kAnyHit>(hit.t));
   w.child = w.stack[w.sp].child, w.count = w.stack[w.sp].count;
   if (w.count == 0) prefetch_line(nodes[w.child].child);
   return false;
@@ -537,7 +544,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       // depends on the box test, so fetch the line now rather than after it (two misses in
       // parallel instead of one after the other).
       prefetch_line(n.child);
-      const F t1 = F::broadcast(cull_bound(hit.t));  // hit.h
+      const F t1 = F::broadcast(query_cull<kAnyHit>(hit.t));  // hit.h
       const F near = max((plane(n, nx) - ox) * ix,
                          max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
       const F far = min((plane(n, nx ^ 1) - ox) * fx,
@@ -648,7 +655,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].t > cull_bound(hit.t));
+    } while (stack[sp].t > query_cull<kAnyHit>(hit.t));
     child = stack[sp].child, count = stack[sp].count;
   }
 }
@@ -679,7 +686,7 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
       h.t = rays[i].tmax;
       if constexpr (kAnyHit) blocked[i] = 0;
       if (!traceable(rays[i])) continue;
-      slot[k].pr = PreparedRay(rays[i]);
+      slot[k].pr = prepare_slot_ray(rays[i]);
       slot[k].box = WideBoxRay<W>(slot[k].pr);
       slot[k].index = i;
       walks[k].child = 0, walks[k].count = 0, walks[k].sp = 0, walks[k].found = false;

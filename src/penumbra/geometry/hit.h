@@ -57,10 +57,24 @@ inline float cull_bound(float t, float abs_slack = 0.0f) {
   return t * (1.0f + kCullSlack) + abs_slack;
 }
 
+/// The bound a query culls at: cull_bound for closest hits. Any-hit queries cull at t itself (the
+/// ray's tmax, as hit.t never shrinks before they end), as before these rules: no order decides
+/// between their hits, and the multiply per box cost the BVH's occlusion rays instructions.
+template <bool kAnyHit>
+inline float query_cull(float t, float abs_slack = 0.0f) {
+  if constexpr (kAnyHit)
+    return t;
+  else
+    return cull_bound(t, abs_slack);
+}
+
 /// The absolute term of cull_bound for a ray with reciprocal direction `inv` (components +-inf
 /// where the direction's are 0) in a set whose largest primitive extent is `max_extent`.
 inline float cull_slack(float max_extent, const float (&inv)[3]) {
-  const float m = std::fmin(std::fabs(inv[0]), std::fmin(std::fabs(inv[1]), std::fabs(inv[2])));
+  // Comparisons, not std::fmin: without -ffinite-math-only GCC calls fminf (in a paired run the
+  // kd-tree's camera rays on the bunny were 15 % slower with the calls).
+  const float x = std::fabs(inv[0]), y = std::fabs(inv[1]), z = std::fabs(inv[2]);
+  const float m = x < y ? (x < z ? x : z) : (y < z ? y : z);
   return kCullSlack * max_extent * m;
 }
 

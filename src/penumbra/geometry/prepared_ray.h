@@ -1,9 +1,7 @@
 #pragma once
 /// Per-ray values computed once before traversal: reciprocal direction, direction signs and the
 /// shear constants of the watertight triangle test.
-#include <bit>
 #include <cmath>
-#include <cstdint>
 
 #include "penumbra/core/ray.h"
 
@@ -22,10 +20,7 @@ struct PreparedRay {
   /// on the million-ray benchmarks the setup was a tenth of a small mesh's instructions per ray.
   [[gnu::always_inline]] explicit PreparedRay(const Ray& r) : ray(r) {
     inv_dir = {1.0f / r.d.x, 1.0f / r.d.y, 1.0f / r.d.z};
-    // The sign bit, read as an integer's sign: GCC 12 hit an internal compiler error
-    // (extract_insn, in its pass vregs) on the vectorised shifts it made of std::signbit here,
-    // compiling the wide BVH's interleaved batches for x86-64-v3.
-    for (int i = 0; i < 3; ++i) neg[i] = std::bit_cast<int32_t>(r.d[i]) < 0 ? 1 : 0;
+    for (int i = 0; i < 3; ++i) neg[i] = std::signbit(r.d[i]) ? 1 : 0;
     // Woop, Benthin, Wald 2013, "Watertight Ray/Triangle Intersection", JCGT 2(1): permute so
     // that z is the dominant direction axis, keeping the winding by swapping x and y if needed.
     // Integer arithmetic on the comparisons and small tables, not branches: incoherent rays
