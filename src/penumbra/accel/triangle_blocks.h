@@ -126,7 +126,9 @@ struct BlockRay {
   block_detail::F8 ox, oy, oz, sx, sy, sz;  ///< permuted origin and shear, in every lane
   block_detail::F8 tmin;                    ///< ray.tmin in every lane
 
-  explicit BlockRay(const PreparedRay& r)
+  // Always inlined: with the tie order's longer block test, GCC 12 made it a call at every leaf
+  // of the BVH's any-hit rays (AVX2, where it is made per leaf), 7 % more of their instructions.
+  [[gnu::always_inline]] explicit BlockRay(const PreparedRay& r)
       : kx(r.kx),
         ky(r.ky),
         kz(r.kz),
