@@ -197,9 +197,10 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   // Per-ray values in arrays: Vec3's operator[] is a chain of selects, too slow per node.
   const float o[3] = {pr.ray.o.x, pr.ray.o.y, pr.ray.o.z};
   const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
-  // Cells are dropped beyond cull_bound(hit.t, cull), not hit.t (hit.h): a triangle's t may lie
-  // below the entry of a cell that holds it by a share of its size.
-  const float cull = cull_slack(max_extent_, inv);
+  // Cells are dropped beyond cull_bound(hit.t, size_slack), not hit.t (hit.h): a triangle's t
+  // may lie below the entry of a cell that holds it by a share of its size. Renewed at each hit.
+  const float size_slack = cull_slack(max_extent_, inv);
+  float cull = query_cull<kAnyHit>(hit.t, size_slack);
   const uint32_t neg_mask[3] = {0u - uint32_t(pr.neg[0]), 0u - uint32_t(pr.neg[1]),
                                 0u - uint32_t(pr.neg[2])};
   // The ray's interval inside the root cell (slab test; a NaN from a ray lying in a face plane
@@ -308,7 +309,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         if (first_empty) {
           if (second_empty) goto pop;
           tmin = max_keep(tp - slack, tmin);
-          if (tmin > query_cull<kAnyHit>(hit.t, cull)) goto pop;  // as a deferred cell would be dropped
+          if (tmin > cull) goto pop;  // as a deferred cell would be dropped
           index = second;
         } else {
           if constexpr (kAnyHit) {
@@ -350,6 +351,7 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
       if (blocks_.intersect<kAnyHit>(block_ray, n.first() / 4, n.count(), hit, cost)) {
         if constexpr (kAnyHit) return true;
         found = true;
+        cull = cull_bound(hit.t, size_slack);
       }
     } else {
       for (uint32_t i = n.first(), end = n.first() + n.count(); i < end; ++i) {
@@ -357,18 +359,19 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         if (prims_->intersect(refs_[i], pr, hit)) {
           if constexpr (kAnyHit) return true;
           found = true;
+          cull = cull_bound(hit.t, size_slack);
         }
       }
     }
     // The next deferred cell that may still hold a closer hit (or one at the same t with a lower
-    // id: hit.h), one starting at or before cull_bound(hit.t). This is the early exit: a hit well inside
-    // this leaf's interval skips every deferred cell, as they start near or after its tmax,
+    // id: hit.h), one starting at or before cull_bound(hit.t). This is the early exit: a hit well
+    // inside this leaf's interval skips every deferred cell, as they start near or after its tmax,
     // except the cells beside a plane the ray lies in, which share this leaf's interval.
   pop:
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].tmin > query_cull<kAnyHit>(hit.t, cull));
+    } while (stack[sp].tmin > cull);
     index = stack[sp].node, tmin = stack[sp].tmin, tmax = stack[sp].tmax;
   }
 }

@@ -361,8 +361,8 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   Entry stack[kStackSize];
   int sp = 0;
   const OctreeRay r(pr);
-  // Nodes are passed over beyond query_cull<kAnyHit>(hit.t, cull), not hit.t (hit.h): a triangle's t may
-  // lie below the entry of a node that holds it by a share of its size.
+  // Nodes are passed over beyond cull_bound(hit.t, cull), not hit.t (hit.h): a triangle's t
+  // may lie below the entry of a node that holds it by a share of its size.
   const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
   const float cull = cull_slack(max_extent_, inv);
   Entry cur{make_corner(root_lo_), 0, 0, t0, t1};
@@ -384,7 +384,8 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         cur = {child_corner(cur.lo, h, oct), node.index + oct, cur.depth + 1, cur.t0, exit};
         continue;
       }
-      if (exit < cur.t1 && exit <= query_cull<kAnyHit>(hit.t, cull)) {  // an empty octant: the next one
+      // An empty octant: on to the next one.
+      if (exit < cur.t1 && exit <= query_cull<kAnyHit>(hit.t, cull)) {
         cur.t0 = exit;
         continue;
       }

@@ -532,6 +532,8 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
   int sp = 0;
   uint32_t child = 0, count = 0;  // the root, an inner node
   bool found = false;
+  // Boxes are culled at cull_bound(hit.t) (hit.h), kept here and renewed when a leaf has a hit.
+  float cull = query_cull<kAnyHit>(hit.t);
   while (true) {
     if (count == 0) {
       // Slab test of all W children at once. max(x, acc) and min(x, acc) keep acc where x is
@@ -544,7 +546,7 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
       // depends on the box test, so fetch the line now rather than after it (two misses in
       // parallel instead of one after the other).
       prefetch_line(n.child);
-      const F t1 = F::broadcast(query_cull<kAnyHit>(hit.t));  // hit.h
+      const F t1 = F::broadcast(cull);
       const F near = max((plane(n, nx) - ox) * ix,
                          max((plane(n, ny) - oy) * iy, max((plane(n, nz) - oz) * iz, t0)));
       const F far = min((plane(n, nx ^ 1) - ox) * fx,
@@ -649,13 +651,14 @@ bool WideBvh<W, Node>::traverse(const PreparedRay& pr, Hit& hit, Cost cost) cons
     if (leaf_hit) {
       if constexpr (kAnyHit) return true;
       found = true;
+      cull = query_cull<kAnyHit>(hit.t);
     }
   pop:
     // The next deferred child that may still hold a closer hit.
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].t > query_cull<kAnyHit>(hit.t));
+    } while (stack[sp].t > cull);
     child = stack[sp].child, count = stack[sp].count;
   }
 }

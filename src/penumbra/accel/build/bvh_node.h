@@ -44,7 +44,8 @@ inline void grow_box(float* box) {
   for (int a = 0; a < 3; ++a)
     if (!(box[2 * a] <= box[2 * a + 1])) return;
   double extent = 0;
-  for (int a = 0; a < 3; ++a) extent = std::max(extent, double(box[2 * a + 1]) - double(box[2 * a]));
+  for (int a = 0; a < 3; ++a)
+    extent = std::max(extent, double(box[2 * a + 1]) - double(box[2 * a]));
   const double slack = extent * double(kCullSlack);
   constexpr float kMax = std::numeric_limits<float>::max();
   for (int a = 0; a < 3; ++a) {
