@@ -51,6 +51,26 @@ Hit expect_as_scalar(const TriangleBlocks& blocks, uint32_t first, const Primiti
   return expected;
 }
 
+/// A leaf of the triangles of `mesh` (three vertices each, in order), its ids in decreasing
+/// order (not id order, so that lane and block order meet the highest id first), filled at block
+/// `first` (behind unused blocks when not 0).
+struct Leaf {
+  PrimitiveSet prims;
+  std::vector<uint32_t> ids;
+  TriangleBlocks blocks;
+};
+Leaf make_leaf(const TriangleMesh& mesh, uint32_t first) {
+  Leaf leaf;
+  leaf.prims.add_mesh(mesh, Transform(), 0);
+  const auto n = uint32_t(mesh.indices.size() / 3);
+  leaf.ids.resize(n);
+  std::vector<PrimRef> refs(n);
+  for (uint32_t i = 0; i < n; ++i) leaf.ids[i] = n - 1 - i, refs[i].id = leaf.ids[i];
+  leaf.blocks.resize(TriangleBlocks::blocks_for(n) + first);
+  leaf.blocks.fill(first, leaf.prims, refs);
+  return leaf;
+}
+
 TEST(TriangleBlocks, MatchTheScalarTestBitForBit) {
   // Leaves of 1..12 triangles (one to three blocks, the last padded; with AVX a pair of blocks
   // is tested as eight lanes, a last odd block as four): random triangles, and
@@ -72,14 +92,7 @@ TEST(TriangleBlocks, MatchTheScalarTestBitForBit) {
       for (const Vec3& p : {a, shared1, c}) mesh.positions.push_back(p);
       for (uint32_t k = 0; k < 3; ++k) mesh.indices.push_back(3 * i + k);
     }
-    PrimitiveSet prims;
-    prims.add_mesh(mesh, Transform(), 0);
-    std::vector<uint32_t> ids(n);
-    std::vector<PrimRef> refs(n);
-    for (uint32_t i = 0; i < n; ++i) ids[i] = n - 1 - i, refs[i].id = ids[i];  // not id order
-    TriangleBlocks blocks;
-    blocks.resize(TriangleBlocks::blocks_for(n) + 1);
-    blocks.fill(1, prims, refs);  // at an offset, behind an unused block
+    const Leaf leaf = make_leaf(mesh, 1);  // at an offset, behind an unused block
 
     const float w = rng.next_float();
     const Vec3 target = it % 4 == 0 ? shared0 : shared0 * w + shared1 * (1.0f - w);
@@ -87,7 +100,8 @@ TEST(TriangleBlocks, MatchTheScalarTestBitForBit) {
     ray.d = target - ray.o;
     if (it % 5 == 0) ray.tmin = 0.5f * rng.next_float();
     const float tmax = it % 7 == 0 ? 0.5f + rng.next_float() : kInfinity;
-    const bool e = expect_as_scalar(blocks, 1, prims, ids, PreparedRay(ray), tmax, it).valid();
+    const bool e =
+        expect_as_scalar(leaf.blocks, 1, leaf.prims, leaf.ids, PreparedRay(ray), tmax, it).valid();
     hits += e;
     any_hits += e && n > 4;
   }
@@ -110,18 +124,12 @@ TEST(TriangleBlocks, CopiesOfATriangleGiveTheLowestIdInEveryLane) {
       for (const Vec3& p : {a, b, c}) mesh.positions.push_back(p);
       for (uint32_t k = 0; k < 3; ++k) mesh.indices.push_back(3 * i + k);
     }
-    PrimitiveSet prims;
-    prims.add_mesh(mesh, Transform(), 0);
-    std::vector<uint32_t> ids(n);
-    std::vector<PrimRef> refs(n);
-    for (uint32_t i = 0; i < n; ++i) ids[i] = n - 1 - i, refs[i].id = ids[i];
-    TriangleBlocks blocks;
-    blocks.resize(TriangleBlocks::blocks_for(n));
-    blocks.fill(0, prims, refs);
+    const Leaf leaf = make_leaf(mesh, 0);
+    const TriangleBlocks& blocks = leaf.blocks;
     Ray ray{rv() * 3.0f - Vec3(1.0f), {}};
     ray.d = (a + b + c) * (1.0f / 3.0f) - ray.o;
     const PreparedRay pr(ray);
-    const Hit h = expect_as_scalar(blocks, 0, prims, ids, pr, kInfinity, it);
+    const Hit h = expect_as_scalar(blocks, 0, leaf.prims, leaf.ids, pr, kInfinity, it);
     ASSERT_TRUE(h.valid()) << "iteration " << it;
     EXPECT_EQ(h.prim, 0u) << "iteration " << it;
     // With a hit of a lower id already at that t, the leaf leaves it be; with a higher id, the
