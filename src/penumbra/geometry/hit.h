@@ -51,8 +51,9 @@ inline constexpr float kCullSlack = 0x1p-16f;
 /// primitive's size comes either from the boxes, which the BVHs grow at build by kCullSlack of
 /// their largest extent (grow_box in accel/build/bvh_node.h), or, for structures of cells that
 /// cannot grow, from `abs_slack`: kCullSlack times the largest extent of a primitive over the
-/// largest |direction component| (cull_slack). Costs nothing measurable: a box or cell starting
-/// within these bounds beyond the closest hit is rare.
+/// largest |direction component| (cull_slack). The extra boxes and cells visited are rare; the
+/// bound is renewed at each hit. What the rules cost together: docs/accel.md, "2026-12-07,
+/// twenty-fifth session".
 inline float cull_bound(float t, float abs_slack = 0.0f) {
   return t * (1.0f + kCullSlack) + abs_slack;
 }

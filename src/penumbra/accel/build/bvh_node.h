@@ -37,9 +37,9 @@ static_assert(sizeof(BvhNode) == 32);
 
 /// Grows a box (rows as BvhNode::box) on every side by kCullSlack (geometry/hit.h) of its largest
 /// extent, rounded outward, for the boxes a traversal tests: with culling at cull_bound(hit.t),
-/// the grown box never starts beyond a primitive's computed t within it, so that the lower id of
-/// two primitives at the same t is always found (hit.h). Empty boxes (lo > hi, or NaN) stay as
-/// they are, and no plane goes beyond the largest finite float.
+/// this covers the part of a primitive's t error that scales with its size, so that a box is
+/// not passed over because that t rounds below the box's entry (hit.h). Empty boxes (lo > hi, or
+/// NaN) stay as they are, and no plane goes beyond the largest finite float.
 inline void grow_box(float* box) {
   for (int a = 0; a < 3; ++a)
     if (!(box[2 * a] <= box[2 * a + 1])) return;
