@@ -361,10 +361,11 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   Entry stack[kStackSize];
   int sp = 0;
   const OctreeRay r(pr);
-  // Nodes are passed over beyond cull_bound(hit.t, cull), not hit.t (hit.h): a triangle's t
-  // may lie below the entry of a node that holds it by a share of its size.
+  // Nodes are passed over beyond cull_bound(hit.t, size_slack), not hit.t (hit.h): a
+  // triangle's t may lie below the entry of a node that holds it by a share of its size.
   const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
-  const float cull = cull_slack(max_extent_, inv);
+  const float size_slack = cull_slack(max_extent_, inv);
+  float cull = query_cull<kAnyHit>(hit.t, size_slack);  // renewed at each hit
   Entry cur{make_corner(root_lo_), 0, 0, t0, t1};
   RayMailbox<kMailbox> mailbox;
   bool found = false;
@@ -385,7 +386,7 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
         continue;
       }
       // An empty octant: on to the next one.
-      if (exit < cur.t1 && exit <= query_cull<kAnyHit>(hit.t, cull)) {
+      if (exit < cur.t1 && exit <= cull) {
         cur.t0 = exit;
         continue;
       }
@@ -398,11 +399,12 @@ bool Octree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
                                               cost)) {
         if constexpr (kAnyHit) return true;
         found = true;
+        cull = cull_bound(hit.t, size_slack);
       }
-      if (query_cull<kAnyHit>(hit.t, cull) < cur.t1) return found;
+      if (cull < cur.t1) return found;
     }
     // 4. The next node front to back; none left, or it starts beyond the closest hit: done.
-    if (sp == 0 || stack[sp - 1].t0 > query_cull<kAnyHit>(hit.t, cull)) return found;
+    if (sp == 0 || stack[sp - 1].t0 > cull) return found;
     cur = stack[--sp];
   }
 }

@@ -314,7 +314,8 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   // whose t rounds lower). Keeping it, rather than rejecting it and meeting the primitive again
   // later, is what makes the mailbox safe.
   const float inv[3] = {pr.inv_dir.x, pr.inv_dir.y, pr.inv_dir.z};
-  const float cull = cull_slack(max_extent_, inv);
+  const float size_slack = cull_slack(max_extent_, inv);
+  float cull = query_cull<kAnyHit>(hit.t, size_slack);  // renewed at each hit
   RayMailbox<kMailbox> mailbox;
   bool found = false;
   while (true) {
@@ -325,11 +326,12 @@ bool UniformGrid::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
                                             offsets_[idx + 1], pr, hit, mailbox, cost)) {
       if constexpr (kAnyHit) return true;
       found = true;
+      cull = cull_bound(hit.t, size_slack);
     }
     const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
     const float t_exit = next[a];
     // The closest hit lies in this cell, or the segment ends (or leaves the grid) in it.
-    if (query_cull<kAnyHit>(hit.t, cull) < t_exit || t1 <= t_exit) return found;
+    if (cull < t_exit || t1 <= t_exit) return found;
     cell[a] += step[a];
     if (cell[a] == last[a]) return found;
     idx += step[a] * stride[a];
