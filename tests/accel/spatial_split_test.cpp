@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <vector>
@@ -174,6 +175,39 @@ TEST(SpatialSplit, SameTreeAtEveryThreadCountAndWithinTheBudget) {
       }
     }
   }
+}
+
+// A height field: cells of two triangles each, small against every node above the leaves. A
+// spatial split there would duplicate about one node side's worth of triangles (a few per cent
+// or less) and shave off only their overhang, so the build gives no node room for more
+// references: every leaf's range stays within the first n slots, and no time goes into moving
+// references up to make room that no split uses (bvh_builder.cpp, kRoomStraddlers). The same
+// budget still buys splits where triangles are long (the test above).
+TEST(SpatialSplit, AHeightFieldOfSmallTrianglesKeepsItsReferencesCompact) {
+  constexpr int kCells = 128;
+  TriangleMesh m;
+  for (int j = 0; j <= kCells; ++j)
+    for (int i = 0; i <= kCells; ++i) {
+      const float x = float(i) / 8.0f, y = float(j) / 8.0f;
+      m.positions.push_back({x, y, 2.0f * std::sin(0.9f * x) * std::cos(0.7f * y) + 0.1f * x});
+    }
+  for (int j = 0; j < kCells; ++j)
+    for (int i = 0; i < kCells; ++i) {
+      const auto v = static_cast<uint32_t>(j * (kCells + 1) + i);
+      const uint32_t w = kCells + 1;
+      for (uint32_t k : {v, v + 1, v + w + 1, v, v + w + 1, v + w}) m.indices.push_back(k);
+    }
+  PrimitiveSet prims;
+  prims.add_mesh(m, Transform(), 0);
+  const size_t n = prims.size();
+  const BinaryBvh t = spatial_tree(prims, 1.0f);
+  size_t refs = 0, end = 0;
+  for (const auto& [node, r] : leaves_of(t)) {
+    refs += r.size();
+    end = std::max<size_t>(end, node.index + node.count);
+  }
+  EXPECT_EQ(refs, n) << "no spatial split pays on a height field";
+  EXPECT_EQ(end, n) << "no node was given room";
 }
 
 // The point of it: on long triangles the tree with spatial splits tests fewer triangles, visits

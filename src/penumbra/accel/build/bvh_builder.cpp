@@ -26,8 +26,17 @@ constexpr size_t kSpatialSamples = 4096;
 /// the cost over all references confirms it;
 constexpr float kSpatialMargin = 0.97f;
 /// and the children get room for more references only when the estimate was within this factor
-/// of the object split's cost (a subtree far from splitting spatially stays compact in memory).
+/// of the object split's cost (a subtree far from splitting spatially stays compact in memory),
 constexpr float kSpatialRoom = 1.25f;
+/// and only when the estimated split duplicates some references (its straddlers; one that
+/// duplicates none is an object split, which needs no room), more than this fraction of the
+/// node's unless the estimate is below the object split's cost. With fewer, the node's
+/// primitives are small against it, as in a height field's upper levels: there the estimate sits
+/// within a few per cent of the object split's and never beats it by the margin, and the room
+/// only cost moves of the right child's references, about half of the node's at every level,
+/// and spatial searches in every subtree below (docs/accel.md, "2026-12-07, twenty-sixth
+/// session": the 1M-triangle terrain's build; cylinder_engine's SAH cost 30.073 -> 30.094).
+constexpr float kRoomStraddlers = 0.02f;
 
 /// Nodes of fewer references than this are binned with at most `few_bins` bins.
 constexpr uint32_t kFewBinsBelow = 256;
@@ -66,7 +75,11 @@ struct BinnedSplitter {
     if (prims && cap > e && depth < kMaxSahDepth &&
         (split.axis < 0 || intersect_boxes(split.left, split.right).surface_area() > min_overlap)) {
       spatial = find_spatial_split({refs + b, n}, box, p.bins, kSpatialSamples, p.block_shift);
-      room = spatial.axis >= 0 && (split.axis < 0 || spatial.cost < kSpatialRoom * split.cost);
+      const float straddlers = spatial.straddlers;
+      const bool better = spatial.cost < split.cost;
+      const bool near = spatial.cost < kSpatialRoom * split.cost;
+      room = spatial.axis >= 0 && (split.axis < 0 || (better && straddlers > 0.0f) ||
+                                   (near && straddlers > kRoomStraddlers * float(n)));
       // The sample's estimate, when clearly better, is checked against all references before
       // the split is made.
       if (spatial.axis >= 0 && split.axis >= 0 &&

@@ -139,6 +139,7 @@ SpatialSplit find_spatial_split(std::span<const PrimRef> refs, const Bounds3& bo
         best.axis = a, best.pos = axes[a].plane[k - 1], best.cost = cost;
         best.left = acc, best.right = right_box[k];
         best.left_count = nl, best.right_count = nr;
+        best.straddlers = float(count + right_count[k] - uint32_t(sampled)) * weight;
       }
     }
   }

@@ -30,6 +30,9 @@ struct SpatialSplit {
   /// References entering on the left and leaving on the right (before unsplitting; estimated
   /// from the sample when the search had one).
   uint32_t left_count = 0, right_count = 0;
+  /// References on both sides (straddling the plane; estimated as the counts), 0 when the split
+  /// duplicates none of the sample: then it is an object split.
+  float straddlers = 0.0f;
 };
 
 /// Finds the spatial split of `refs` (inside `box`) over `bins` equal bins per axis (2..64)
