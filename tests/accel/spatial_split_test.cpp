@@ -1,7 +1,8 @@
 /// Tests of spatial splits (accel/build/spatial_split.h, the default `bvh`'s SBVH build): the
 /// two sides of a split cover every triangle, the binned search finds the cheapest of its planes,
-/// the tree is the same at every thread count and within its budget, and on long triangles the
-/// tree does less work per ray than object splits alone, finding the same hits.
+/// the tree is the same at every thread count and within its budget, a height field's tree stays
+/// compact, and on long triangles the tree does less work per ray than object splits alone,
+/// finding the same hits.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -177,12 +178,13 @@ TEST(SpatialSplit, SameTreeAtEveryThreadCountAndWithinTheBudget) {
   }
 }
 
-// A height field: cells of two triangles each, small against every node above the leaves. A
-// spatial split there would duplicate about one node side's worth of triangles (a few per cent
-// or less) and shave off only their overhang, so the build gives no node room for more
-// references: every leaf's range stays within the first n slots, and no time goes into moving
-// references up to make room that no split uses (bvh_builder.cpp, kRoomStraddlers). The same
-// budget still buys splits where triangles are long (the test above).
+// A height field: cells of two triangles each, small against the upper nodes. There the best
+// spatial plane duplicates a few per cent of a node's references or none (a plane on a grid line
+// is the object split at that plane), so the upper nodes get no room for more references, and a
+// subtree without room neither searches nor splits spatially: every leaf's range stays within
+// the first n slots, and no time goes into moving references up for room that no split uses
+// (bvh_builder.cpp, kRoomStraddlers). Long triangles still get their splits (the slivers of the
+// tests before and after this one).
 TEST(SpatialSplit, AHeightFieldOfSmallTrianglesKeepsItsReferencesCompact) {
   constexpr int kCells = 128;
   TriangleMesh m;
