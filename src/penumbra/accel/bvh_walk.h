@@ -21,9 +21,11 @@ inline bool walk_bvh(const BvhNodeArray& nodes, const BvhRay& r, float tmin, Hit
     uint32_t index, count;
     float t;
   };
-  // Boxes are culled at query_cull<kAnyHit>(hit.t), not hit.t (hit.h; the builders grew them).
+  // Boxes are culled at query_cull<kAnyHit>(hit.t), not hit.t (hit.h; the builders grew them),
+  // kept here and renewed when a leaf has a hit.
+  float cull = query_cull<kAnyHit>(hit.t);
   float entry;
-  if (!hit_node(nodes[0], r, tmin, query_cull<kAnyHit>(hit.t), entry)) return false;
+  if (!hit_node(nodes[0], r, tmin, cull, entry)) return false;
   StackEntry stack[kBvhStackSize];
   int sp = 0;
   uint32_t index = nodes[0].index, count = nodes[0].count;
@@ -37,7 +39,6 @@ inline bool walk_bvh(const BvhNodeArray& nodes, const BvhRay& r, float tmin, Hit
       const BvhNode& a = nodes[index];
       const BvhNode& b = nodes[index + 1];
       float ta, tb;
-      const float cull = query_cull<kAnyHit>(hit.t);
       const bool ha = hit_node(a, r, tmin, cull, ta);
       const bool hb = hit_node(b, r, tmin, cull, tb);
       if (ha && hb) {
@@ -57,13 +58,14 @@ inline bool walk_bvh(const BvhNodeArray& nodes, const BvhRay& r, float tmin, Hit
     if (leaf(index, count)) {
       if constexpr (kAnyHit) return true;
       found = true;
+      cull = query_cull<kAnyHit>(hit.t);
     }
   pop:
     // The next deferred subtree that may still hold a closer hit.
     do {
       if (sp == 0) return found;
       --sp;
-    } while (stack[sp].t > query_cull<kAnyHit>(hit.t));
+    } while (stack[sp].t > cull);
     index = stack[sp].index, count = stack[sp].count;
   }
 }

@@ -392,12 +392,14 @@ struct WideBoxRay {
 };
 
 /// One ray's interleaved traversal: where it goes next (a node, count 0, or a leaf), what it
-/// deferred, and whether it found a hit.
+/// deferred, whether it found a hit, and the bound its boxes are culled at (query_cull of its
+/// hit.t, renewed when a leaf has a hit).
 template <int W, class Node>
 struct WideBvh<W, Node>::Walk {
   uint32_t child = 0, count = 0;  // the root, an inner node
   int sp = 0;
   bool found = false;
+  float cull = kInfinity;
   StackEntry stack[kStackSize];
 };
 
@@ -424,7 +426,7 @@ template <bool kAnyHit, bool kTriangles>
   };
   if (w.count == 0) {
     const Node& n = nodes[w.child];
-    const F t1 = F::broadcast(query_cull<kAnyHit>(hit.t));  // hit.h
+    const F t1 = F::broadcast(w.cull);  // hit.h
     const F near = max((plane(n, b.nx) - b.ox) * b.ix,
                        max((plane(n, b.ny) - b.oy) * b.iy,
                            max((plane(n, b.nz) - b.oz) * b.iz, b.t0)));
@@ -478,13 +480,14 @@ template <bool kAnyHit, bool kTriangles>
     if (leaf_hit) {
       w.found = true;
       if constexpr (kAnyHit) return true;
+      w.cull = query_cull<kAnyHit>(hit.t);
     }
   }
   // The next deferred child that may still hold a closer hit.
   do {
     if (w.sp == 0) return true;
     --w.sp;
-  } while (w.stack[w.sp].t > query_cull<kAnyHit>(hit.t));
+  } while (w.stack[w.sp].t > w.cull);
   w.child = w.stack[w.sp].child, w.count = w.stack[w.sp].count;
   if (w.count == 0) prefetch_line(nodes[w.child].child);
   return false;
@@ -693,6 +696,7 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
       slot[k].box = WideBoxRay<W>(slot[k].pr);
       slot[k].index = i;
       walks[k].child = 0, walks[k].count = 0, walks[k].sp = 0, walks[k].found = false;
+      walks[k].cull = query_cull<kAnyHit>(h.t);
       prefetch_line(nodes[0].child);
       return true;
     }
@@ -714,6 +718,7 @@ void WideBvh<W, Node>::interleave(std::span<const Ray> rays, std::span<Hit> hits
       if (k < live) {
         const Walk& last = walks[live];
         w.child = last.child, w.count = last.count, w.sp = last.sp, w.found = last.found;
+        w.cull = last.cull;
         std::copy(last.stack, last.stack + last.sp, w.stack);
         slot[k] = slot[live];
       }

@@ -75,11 +75,10 @@ struct BinnedSplitter {
     if (prims && cap > e && depth < kMaxSahDepth &&
         (split.axis < 0 || intersect_boxes(split.left, split.right).surface_area() > min_overlap)) {
       spatial = find_spatial_split({refs + b, n}, box, p.bins, kSpatialSamples, p.block_shift);
-      const float straddlers = spatial.straddlers;
       const bool better = spatial.cost < split.cost;
       const bool near = spatial.cost < kSpatialRoom * split.cost;
-      room = spatial.axis >= 0 && (split.axis < 0 || (better && straddlers > 0.0f) ||
-                                   (near && straddlers > kRoomStraddlers * float(n)));
+      room = spatial.axis >= 0 && (split.axis < 0 || (better && spatial.straddlers > 0.0f) ||
+                                   (near && spatial.straddlers > kRoomStraddlers * float(n)));
       // The sample's estimate, when clearly better, is checked against all references before
       // the split is made.
       if (spatial.axis >= 0 && split.axis >= 0 &&
