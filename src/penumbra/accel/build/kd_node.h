@@ -34,6 +34,9 @@ class KdNode {
   bool is_leaf() const { return (bits_ & 3u) == 3u; }
   /// Split axis of an inner node.
   int axis() const { return int(bits_ & 3u); }
+  /// The word holding the axis in its low two bits (and above() and the marks above them), for
+  /// a traversal that picks a per-axis bit by shifting with it (kdtree.cpp, swap_by_axis).
+  uint32_t axis_word() const { return bits_; }
   /// Split position of an inner node.
   float split() const { return std::bit_cast<float>(word_); }
   /// Index of the child above the plane (inner nodes; the one below is this index + 1).
