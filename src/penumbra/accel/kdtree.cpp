@@ -202,6 +202,7 @@ void KdTree::build(const PrimitiveSet& prims) {
     }
     nodes_ = std::move(packed);
   }
+  for (int a = 0; a < 3; ++a) planes_[0][a] = bounds_.lo[a], planes_[1][a] = bounds_.hi[a];
   stats_.nodes = stats_.leaves == 0 ? 0 : 2 * stats_.leaves - 1;  // of the tree, stored or not
   stats_.extra.emplace_back("stored nodes", double(nodes_.size()));
   stats_.bytes =
@@ -226,8 +227,8 @@ bool KdTree::traverse(const PreparedRay& pr, Hit& hit, Cost cost) const {
   // keeps the running bound), widened like every other cell interval.
   float tmin = pr.ray.tmin, tmax = hit.t;
   for (int a = 0; a < 3; ++a) {
-    const float tn = ((pr.neg[a] ? bounds_.hi[a] : bounds_.lo[a]) - o[a]) * inv[a];
-    const float tf = ((pr.neg[a] ? bounds_.lo[a] : bounds_.hi[a]) - o[a]) * inv[a];
+    const float tn = (planes_[pr.neg[a]][a] - o[a]) * inv[a];
+    const float tf = (planes_[pr.neg[a] ^ 1][a] - o[a]) * inv[a];
     tmin = tn > tmin ? tn : tmin;
     tmax = tf < tmax ? tf : tmax;
   }

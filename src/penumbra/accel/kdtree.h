@@ -70,6 +70,9 @@ class KdTree final : public Accelerator {
   KdBuildParams params_;
   const PrimitiveSet* prims_ = nullptr;
   Bounds3 bounds_;
+  /// bounds_ as [lo, hi][axis], so that a ray's entry and exit planes are loads indexed by its
+  /// direction's signs (a branch on each sign mispredicted half the random rays).
+  float planes_[2][3] = {};
   float max_extent_ = 0;  ///< the largest extent of a referenced primitive's box (cull_slack)
   std::vector<KdNode, ArrayAllocator<KdNode>> nodes_;
   std::vector<uint32_t, ArrayAllocator<uint32_t>> refs_;
