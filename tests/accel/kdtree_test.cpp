@@ -1,6 +1,7 @@
 /// Tests of the kd-tree: parameters, every split criterion against brute force, clipping of
 /// primitives to boxes, the event encoding, primitives lying in split planes, rays along split
-/// planes, empty-space cut-off, tree invariants and determinism.
+/// planes, empty-space cut-off, tree invariants (the leaves' triangles by their clipped area) and
+/// determinism.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -181,6 +182,21 @@ TEST(KdTree, TriangleClippedToABoxIsExact) {
   EXPECT_LE(b.lo.z, 0.0f);
   EXPECT_GE(b.hi.z, 2.0 / 3.0);  // at (1, 1): z = 2/3
   EXPECT_LE(b.hi.z, std::nextafter(float(2.0 / 3.0), 1.0f));
+}
+
+TEST(KdTree, ClippedAreaIsExact) {
+  PrimitiveSet prims;
+  add_triangle(prims, {0, 0, 0}, {4, 0, 0}, {0, 4, 0});
+  prims.add_quad({Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(0, 0, 3)}, 0);
+  prims.add_sphere({Vec3(2, 2, 2), 1.0f}, 0);
+  const Bounds3 all({-10, -10, -10}, {10, 10, 10});
+  EXPECT_DOUBLE_EQ(clip_prim_area(prims, 0, all), 8.0);
+  // The square [1, 3]^2 without its corner beyond x + y = 4 (a right triangle of legs 2).
+  EXPECT_DOUBLE_EQ(clip_prim_area(prims, 0, Bounds3({1, 1, -1}, {3, 3, 1})), 2.0);
+  EXPECT_DOUBLE_EQ(clip_prim_area(prims, 0, Bounds3({5, 5, -1}, {6, 6, 1})), 0.0);
+  EXPECT_DOUBLE_EQ(clip_prim_area(prims, 1, all), 6.0);
+  EXPECT_DOUBLE_EQ(clip_prim_area(prims, 1, Bounds3({1, -1, 1}, {3, 1, 2})), 1.0);
+  EXPECT_EQ(clip_prim_area(prims, 2, all), 0.0);  // no polygon
 }
 
 TEST(KdTree, StraddlingPrimitivesSplitIntoTheirParts) {
@@ -469,6 +485,13 @@ TEST(KdTree, TreeInvariantsHold) {
           ++referenced[id];
           // The primitive really reaches the cell (its clipped part is not empty).
           EXPECT_FALSE(clip_prim_bounds(s.prims, id, v.cell).empty()) << id;
+          // Triangles in blocks: the largest part inside the cell first, then by id.
+          if (s.prims.all_triangles() && i > n.first()) {
+            const uint32_t prev = kd.refs()[i - 1];
+            const double a = clip_prim_area(s.prims, prev, v.cell);
+            const double b = clip_prim_area(s.prims, id, v.cell);
+            EXPECT_TRUE(a > b || (a == b && prev < id)) << prev << " before " << id;
+          }
         }
       }
       for (uint32_t id = 0; id < s.prims.size(); ++id)

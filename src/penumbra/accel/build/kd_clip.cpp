@@ -119,6 +119,28 @@ Bounds3 clip_prim_bounds(const PrimitiveSet& prims, uint32_t id, const Bounds3& 
   return polygon_bounds(poly, box);
 }
 
+double clip_prim_area(const PrimitiveSet& prims, uint32_t id, const Bounds3& box) {
+  Polygon poly;
+  if (!prim_polygon(prims, id, poly)) return 0.0;
+  // A polygon inside the box is its own clip (every vertex kept, no edge crossing a plane).
+  const Bounds3 b = prims.prim_bounds(id);
+  if (!(b.lo.x >= box.lo.x && b.lo.y >= box.lo.y && b.lo.z >= box.lo.z && b.hi.x <= box.hi.x &&
+        b.hi.y <= box.hi.y && b.hi.z <= box.hi.z))
+    clip_to_box(poly, box);
+  // Newell's sum: twice the area vector of a planar polygon is the sum of its edges' cross
+  // products taken from any point (its first vertex here).
+  double n[3] = {0.0, 0.0, 0.0};
+  for (int i = 1; i + 1 < poly.n; ++i) {
+    double e1[3], e2[3];
+    for (int a = 0; a < 3; ++a)
+      e1[a] = poly.v[i][a] - poly.v[0][a], e2[a] = poly.v[i + 1][a] - poly.v[0][a];
+    n[0] += e1[1] * e2[2] - e1[2] * e2[1];
+    n[1] += e1[2] * e2[0] - e1[0] * e2[2];
+    n[2] += e1[0] * e2[1] - e1[1] * e2[0];
+  }
+  return 0.5 * std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
 void split_prim_bounds(const PrimitiveSet& prims, uint32_t id, const Bounds3& box, int axis,
                        float pos, bool clip, Bounds3& below, Bounds3& above) {
   Bounds3 below_box = box, above_box = box;

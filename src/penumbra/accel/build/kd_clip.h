@@ -37,6 +37,10 @@ Bounds3 clip_polygon_bounds(std::span<const Vec3> poly, const Bounds3& box);
 /// intersected with `box`. Empty when they do not meet.
 Bounds3 clip_prim_bounds(const PrimitiveSet& prims, uint32_t id, const Bounds3& box);
 
+/// Area of the part of primitive `id` inside `box` (the clipped polygon of a triangle or
+/// parallelogram); 0 for spheres and moving primitives, which have no fixed polygon.
+double clip_prim_area(const PrimitiveSet& prims, uint32_t id, const Bounds3& box);
+
 /// Splits a primitive whose current bounds `box` straddle plane (axis, pos): the bounds of its
 /// parts below and above the plane (either may be empty). With `clip` false (or for spheres and
 /// moving primitives), `box` is just cut at the plane.
