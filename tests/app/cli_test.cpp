@@ -428,10 +428,24 @@ TEST_F(CliTest, AccelBenchRepeatsAndPairsRunsWithEmbree) {
         EXPECT_GT(c["prims"].get<double>(), 0.0) << set;
         EXPECT_LE(c["prims"].get<double>(), 38.0) << set;  // the box's 38 triangles at most
       }
+      // The incoherent rays split by hit and miss: the groups' means weighted by their sizes
+      // are the whole set's, for the closest-hit and the any-hit queries.
+      const double hits = row["incoherent_hits"].get<double>(), all = 500.0;
+      EXPECT_GT(hits, 0.0);
+      EXPECT_LE(hits, all);
+      for (const char* set : {"incoherent", "occlusion"})
+        for (const char* what : {"nodes", "prims"}) {
+          const auto& p = row["per_ray"];
+          const double split = hits * p[std::string(set) + "_hit"][what].get<double>() +
+                               (all - hits) * p[std::string(set) + "_miss"][what].get<double>();
+          EXPECT_NEAR(split, all * p[set][what].get<double>(), 1e-9 * all * 38.0)
+              << set << " " << what;
+        }
     }
   }
   EXPECT_NE(out_.find("per ray, nodes visited / primitive tests: primary"), std::string::npos)
       << out_;
+  EXPECT_NE(out_.find("incoherent rays: "), std::string::npos) << out_;
   for (const char* bad : {"0", "x", "101"})
     EXPECT_NE(run("accel-bench " + scene("cornell-box.json") + " --accel bvh --repeat " + bad), 0)
         << bad;

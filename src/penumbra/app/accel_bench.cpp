@@ -532,24 +532,46 @@ void run_accel_bench(const AccelBenchArgs& args) {
         },
         args.batch);
     measure(row, rays, threads, args.repeat, side, embree ? &embree_side : nullptr, nullptr);
-    // The structure's own counts over each ray set (a separate, untimed pass).
-    const auto counts = [&](const std::vector<Ray>& set, bool any_hit) {
+    // The structure's own counts over each ray set (a separate, untimed pass), and whether
+    // each closest-hit query found a hit.
+    const auto costs_of = [&](const std::vector<Ray>& set, bool any_hit,
+                              std::vector<uint8_t>* hits = nullptr) {
       std::vector<TraversalCost> costs(set.size());
+      if (hits) hits->assign(set.size(), 0);
       parallel_for(costs.size(), [&](size_t i) {
         Hit h;
-        if (any_hit)
+        if (any_hit) {
           accel->occluded_cost(set[i], costs[i]);
-        else
-          accel->intersect_cost(set[i], h, costs[i]);
+        } else {
+          const bool hit = accel->intersect_cost(set[i], h, costs[i]);
+          if (hits) (*hits)[i] = hit;
+        }
       });
-      TraversalCost total;
-      for (const TraversalCost& c : costs) total += c;
-      const double n = double(std::max<size_t>(1, costs.size()));
-      return RayCounts{double(total.nodes) / n, double(total.prims) / n};
+      return costs;
     };
-    row.counts = BenchCounts{counts(rays.primary, false), counts(rays.incoherent, false),
-                             counts(rays.incoherent, true), counts(rays.path.bounce, false),
-                             counts(rays.path.shadow, true)};
+    // The mean over the queries whose hit flag is `want` (every query when `hits` is null).
+    const auto mean = [](const std::vector<TraversalCost>& costs,
+                         const std::vector<uint8_t>* hits = nullptr, uint8_t want = 1) {
+      TraversalCost total;
+      size_t n = 0;
+      for (size_t i = 0; i < costs.size(); ++i)
+        if (!hits || (*hits)[i] == want) total += costs[i], ++n;
+      const double d = double(std::max<size_t>(1, n));
+      return RayCounts{double(total.nodes) / d, double(total.prims) / d};
+    };
+    std::vector<uint8_t> hits;
+    const auto incoherent = costs_of(rays.incoherent, false, &hits);
+    const auto occlusion = costs_of(rays.incoherent, true);
+    BenchCounts c;
+    c.primary = mean(costs_of(rays.primary, false));
+    c.incoherent = mean(incoherent), c.occlusion = mean(occlusion);
+    c.bounce = mean(costs_of(rays.path.bounce, false));
+    c.shadow = mean(costs_of(rays.path.shadow, true));
+    c.incoherent_hit = mean(incoherent, &hits, 1), c.incoherent_miss = mean(incoherent, &hits, 0);
+    c.occlusion_hit = mean(occlusion, &hits, 1), c.occlusion_miss = mean(occlusion, &hits, 0);
+    c.incoherent_rays = hits.size();
+    c.incoherent_hits = size_t(std::count(hits.begin(), hits.end(), uint8_t(1)));
+    row.counts = c;
     rows.push_back(row);
     accel.reset();  // free its memory before the next build
   }

@@ -1,5 +1,7 @@
 #include "penumbra/app/accel_bench_table.h"
 
+#include <algorithm>
+
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
@@ -112,6 +114,12 @@ void print_bench_table(const std::vector<BenchRow>& rows, int build_threads, int
           r.accel, c.primary.nodes, c.primary.prims, c.incoherent.nodes, c.incoherent.prims,
           c.occlusion.nodes, c.occlusion.prims, c.bounce.nodes, c.bounce.prims, c.shadow.nodes,
           c.shadow.prims, figures);
+      fmt::print(
+          "{:<22} incoherent rays: {:.1f} % hit something; per ray that hits, closest {:.1f} / "
+          "{:.1f}, any {:.1f} / {:.1f}; per ray that misses {:.1f} / {:.1f}\n",
+          r.accel, 100.0 * double(c.incoherent_hits) / double(std::max<size_t>(1, c.incoherent_rays)),
+          c.incoherent_hit.nodes, c.incoherent_hit.prims, c.occlusion_hit.nodes,
+          c.occlusion_hit.prims, c.incoherent_miss.nodes, c.incoherent_miss.prims);
     }
   fmt::print(
       "(build ms at {} and Mrays/s: medians of {} run(s); refs/prim: leaf references per "
@@ -197,7 +205,13 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
                                      {"bounce", c.bounce},
                                      {"shadow", c.shadow}})
         per_ray[key] = {{"nodes", set.nodes}, {"prims", set.prims}};
+      for (const auto& [key, set] : {std::pair{"incoherent_hit", c.incoherent_hit},
+                                     {"incoherent_miss", c.incoherent_miss},
+                                     {"occlusion_hit", c.occlusion_hit},
+                                     {"occlusion_miss", c.occlusion_miss}})
+        per_ray[key] = {{"nodes", set.nodes}, {"prims", set.prims}};
       o["per_ray"] = per_ray;
+      o["incoherent_hits"] = c.incoherent_hits;
     }
     for (const auto& [key, value] : r.extra) o[key] = value;
     out.push_back(o);

@@ -29,6 +29,11 @@ struct RayCounts {
 /// The counts of the five ray sets (primary, incoherent, occlusion, bounce, shadow).
 struct BenchCounts {
   RayCounts primary, incoherent, occlusion, bounce, shadow;
+  /// The incoherent rays split by whether they hit something: their closest-hit and any-hit
+  /// counts per ray over the rays that hit and over those that miss (zero for an empty group),
+  /// and how many hit.
+  RayCounts incoherent_hit, incoherent_miss, occlusion_hit, occlusion_miss;
+  size_t incoherent_rays = 0, incoherent_hits = 0;
 };
 
 /// The measurements of one structure (or of Embree: "embree", or "embree:robust" in its robust
